@@ -21,6 +21,8 @@ const Observer& cie1931Observer();  // "CIE1931_2" (default)
 const Observer& cie1964Observer();  // "CIE1964_10"
 // By name ("CIE1931_2" or "CIE1964_10"); throws std::invalid_argument otherwise.
 const Observer& observerByName(std::string_view name);
+// (x̄, ȳ, z̄) at a wavelength: linear interpolation, zero outside the table.
+std::array<double, 3> cmfAt(const Observer& obs, double lambdaNm);
 
 constexpr double kLumensPerWatt = 683.0;
 

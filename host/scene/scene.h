@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -47,6 +48,7 @@ struct Light {
   double powerW = 0.0;            // total radiant flux of the whole emission
   std::string spdLabel;           // "D65", "blackbody 2700 K", "lamp.csv", ...
   Spd spd;                        // resolved spectrum (relative units)
+  std::string name;               // optional "name" from the file; empty when absent
 };
 
 struct Pinhole {
@@ -86,5 +88,7 @@ struct Scene {
 Scene loadScene(const std::filesystem::path& file);
 // Parses JSON text; `file` is used for messages and relative paths.
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& file);
+// Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
+std::string sceneSha256Hex(std::string_view bytes);
 
 }  // namespace spectrace

@@ -1,0 +1,34 @@
+#pragma once
+// The CLI verbs, each a small function over the library; main() only parses.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace spectrace::cli {
+
+struct RenderCommand {
+  std::filesystem::path scene;
+  std::optional<std::filesystem::path> output;  // default out/<scene stem>.exr
+  std::optional<uint64_t> beams;                // default: the scene's render.beams
+  std::optional<uint64_t> seed;                 // default: the scene's render.seed
+  uint64_t firstBeam = 0;
+  std::string device = "auto";
+  unsigned threads = 0;
+  bool png = true;
+  bool quiet = false;
+  double checkpointSeconds = 60.0;
+};
+int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
+
+int runDevices();
+
+struct BenchCommand {
+  uint64_t beams = uint64_t(1) << 25;
+  std::string devices = "gpu,cpu";
+  unsigned threads = 0;
+};
+int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
+
+}  // namespace spectrace::cli

@@ -1,0 +1,56 @@
+// spectrace: spectral light tracer. Parses the command line and hands over
+// to the verbs in commands.cpp.
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+
+namespace {
+std::atomic<bool> gCancel{false};
+extern "C" void onSignal(int) { gCancel.store(true); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace spectrace::cli;
+  CLI::App app{"spectrace: a spectral light tracer on Vulkan compute, with an exact CPU reference"};
+  app.require_subcommand(1);
+
+  RenderCommand render;
+  auto* renderCmd = app.add_subcommand("render", "Render a scene file to OpenEXR (and a PNG preview)");
+  renderCmd->add_option("scene", render.scene, "Scene file (JSON)")->required();
+  renderCmd->add_option("-o,--output", render.output, "Output EXR (default out/<scene>.exr)");
+  renderCmd->add_option("--beams", render.beams, "Number of beams (default: the scene's render.beams)");
+  renderCmd->add_option("--seed", render.seed, "RNG seed (default: the scene's render.seed)");
+  renderCmd->add_option("--first-beam", render.firstBeam, "Index of the first beam (to split a render into parts)");
+  renderCmd->add_option("--device", render.device, "auto, gpu (any Vulkan device, lavapipe included) or cpu")
+      ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
+  renderCmd->add_option("--threads", render.threads, "CPU reference threads (default: all)");
+  renderCmd->add_flag("!--no-png", render.png, "Do not write the PNG preview");
+  renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
+  renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
+                        "Write the image so far at this interval (0: never)");
+
+  auto* devicesCmd = app.add_subcommand("devices", "List Vulkan devices and the limits that matter here");
+
+  BenchCommand bench;
+  auto* benchCmd = app.add_subcommand("bench", "Beams per second: Vulkan device vs CPU reference on a fixed scene");
+  benchCmd->add_option("--beams", bench.beams, "Beams per device");
+  benchCmd->add_option("--device", bench.devices, "Comma-separated list of gpu and cpu");
+  benchCmd->add_option("--threads", bench.threads, "CPU reference threads (default: all)");
+
+  CLI11_PARSE(app, argc, argv);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  try {
+    if (renderCmd->parsed()) return runRender(render, gCancel);
+    if (devicesCmd->parsed()) return runDevices();
+    if (benchCmd->parsed()) return runBench(bench, gCancel);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "spectrace: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,193 @@
+// Tests of the shared beam code as the CPU runs it: wavelength sampling
+// (chi-square against the SPD), exact integer CDFs, the trig polynomials and
+// the direction samplers. The GPU runs the same text; gpu tests compare the
+// two beam for beam.
+#include "cpu/beam_kernel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "rng/philox.h"
+#include "spectrum/spd.h"
+#include "spectrum/wavelength_sampler.h"
+#include "support/statistics.h"
+
+namespace spectrace {
+namespace {
+
+using device::BeamKernel;
+
+// A kernel over one light's spectral table; only the spectral part is used.
+struct SamplerFixture {
+  SpectralTable table;
+  device::TraceConstants constants{};
+  std::vector<device::LightRecord> lights{1};
+  BeamKernel kernel;
+  explicit SamplerFixture(const Spd& spd)
+      : table(buildSpectralTable(spd)), kernel(constants, lights, table.intervals) {
+    lights[0].spectralCount = uint32_t(table.intervals.size());
+  }
+  float draw(uint64_t seed, uint64_t i) const {
+    const auto w = philoxWords(seed, i, device::kRngBlockSelect);
+    const auto g = philoxWords(seed, i, device::kRngBlockGeometry);
+    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[2], w[3]), uniformFromWord(g[0]));
+  }
+};
+
+// Draws n wavelengths and chi-square tests them against the SPD's own
+// integral over cells of `cellNm` between lo and hi. p > 0.01 (a fixed seed,
+// so the test is deterministic; a correct sampler fails it 1% of seeds).
+void expectMatchesSpd(const Spd& spd, double lo, double hi, double cellNm, uint64_t n, uint64_t seed) {
+  SamplerFixture f(spd);
+  const int cells = int(std::round((hi - lo) / cellNm));
+  std::vector<uint64_t> observed(cells, 0);
+  uint64_t outside = 0;
+  for (uint64_t i = 0; i < n; ++i) {
+    const double lambda = f.draw(seed, i);
+    const int c = int(std::floor((lambda - lo) / cellNm));
+    if (c < 0 || c >= cells) ++outside; else ++observed[c];
+  }
+  EXPECT_EQ(outside, 0u) << "samples outside the SPD's support";
+  const double total = spd.integral();
+  std::vector<double> probability(cells);
+  for (int c = 0; c < cells; ++c) {
+    const Spd part = spd.clipped(lo + c * cellNm, lo + (c + 1) * cellNm);
+    probability[c] = part.lambdaNm.empty() ? 0.0 : part.integral() / total;
+  }
+  const auto result = testing::chiSquareTest(observed, probability);
+  EXPECT_FALSE(result.impossibleHit) << "a sample fell where the SPD is zero";
+  EXPECT_GT(result.pValue, 0.01) << "chi2 = " << result.statistic << " dof = " << result.degreesOfFreedom;
+}
+
+TEST(WavelengthSampler, ChiSquareD65) {
+  const Spd d65 = cieIlluminant("D65")->clipped(360, 830);
+  expectMatchesSpd(d65, 360, 830, 1.0, 2'000'000, 1);
+}
+
+TEST(WavelengthSampler, ChiSquareF11) {
+  const Spd f11 = cieIlluminant("F11")->clipped(360, 830);
+  expectMatchesSpd(f11, 380, 780, 1.0, 2'000'000, 2);
+}
+
+TEST(WavelengthSampler, ChiSquareGaussianLaserLine) {
+  const Spd line = makeLineSpd(532.0, 1.0);
+  expectMatchesSpd(line, 529.0, 535.0, 0.05, 1'000'000, 3);
+}
+
+TEST(WavelengthSampler, DiracLineIsExact) {
+  SamplerFixture f(makeLineSpd(532.0));
+  for (uint64_t i = 0; i < 10000; ++i) ASSERT_EQ(f.draw(4, i), 532.0f);
+}
+
+TEST(WavelengthSampler, ChiSquareCsvWithZeroGapsAndNeverInsideThem) {
+  const auto dir = std::filesystem::temp_directory_path() / ("spectrace_sampler_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto csv = dir / "gaps.csv";
+  {
+    std::ofstream out(csv);
+    out << "wavelength_nm,value\n400,0\n410,1\n430,1\n440,0\n470,0\n475,0\n480,3\n481,0\n500,0\n"
+           "520,0.5\n600,0.5\n610,0\n700,0\n";
+  }
+  const Spd spd = loadCsvSpd(csv);
+  std::filesystem::remove_all(dir);
+  expectMatchesSpd(spd, 400, 700, 0.5, 2'000'000, 5);
+  SamplerFixture f(spd);
+  for (uint64_t i = 0; i < 1'000'000; ++i) {
+    const float l = f.draw(6, i);
+    // Zero-power intervals (440-480, 481-520 and 610-700 are zero except at
+    // their positive ends) are never drawn.
+    ASSERT_FALSE(l > 440.0f && l < 475.0f) << l;
+    ASSERT_FALSE(l > 481.0f && l < 500.0f) << l;
+    ASSERT_FALSE(l > 610.0f) << l;
+  }
+}
+
+TEST(IntegerCdf, ZeroWeightsNeverDrawnPositiveAlwaysDrawable) {
+  const std::vector<double> weights = {1e-30, 0.0, 0.0, 5.0, 0.0, 1e30, 0.0, 1e-300, 2.0};
+  const auto lows = quantizeCdf(weights);
+  unsigned __int128 sum = 0;
+  for (size_t j = 0; j < weights.size(); ++j) {
+    const double p = cdfProbability(lows, j);
+    if (weights[j] == 0.0) EXPECT_EQ(p, 0.0) << j;
+    else EXPECT_GT(p, 0.0) << j;
+    sum += (unsigned __int128)(j + 1 < lows.size() ? lows[j + 1] : 0) - lows[j];
+  }
+  // Widths telescope to exactly 2^64 (mod 2^128 arithmetic above).
+  EXPECT_EQ(uint64_t(sum + lows.back()), 0u);
+  // The search never lands on a zero-width entry, even at every boundary.
+  SamplerFixture dummy(makeLineSpd(500.0));
+  std::vector<device::SpectralInterval> intervals(weights.size());
+  for (size_t j = 0; j < weights.size(); ++j) intervals[j].cdfLow = lows[j];
+  device::TraceConstants c{};
+  std::vector<device::LightRecord> l(1);
+  BeamKernel k(c, l, intervals);
+  for (size_t j = 0; j < weights.size(); ++j) {
+    for (uint64_t u : {lows[j], lows[j] - 1, lows[j] + 1, ~uint64_t(0), uint64_t(0)}) {
+      const uint32_t found = k.searchSpectralInterval(0, uint32_t(weights.size()), u);
+      EXPECT_GT(weights[found], 0.0) << "u=" << u;
+      const uint64_t high = found + 1 < lows.size() ? lows[found + 1] : 0;
+      EXPECT_GE(u, lows[found]);
+      if (high != 0) EXPECT_LT(u, high);
+    }
+  }
+}
+
+TEST(IntegerCdf, SharesAreExactToTheWidthRounding) {
+  std::vector<double> weights;
+  for (int i = 0; i < 1000; ++i) weights.push_back(1.0 + (i % 7) * 0.37 + (i == 500 ? 1e6 : 0.0));
+  const auto lows = quantizeCdf(weights);
+  double total = 0.0;
+  for (double w : weights) total += w;
+  for (size_t j = 0; j < weights.size(); ++j) {
+    // Rounding down loses < 1 in 2^64 * share (> 4e13 here); the largest
+    // entry absorbs at most n units.
+    EXPECT_NEAR(cdfProbability(lows, j) / (weights[j] / total), 1.0, 1e-12) << j;
+  }
+}
+
+TEST(SharedMath, CosSin2PiMatchesLibmToAFewUlps) {
+  SamplerFixture f(makeLineSpd(500.0));
+  double worst = 0.0;
+  for (uint32_t k = 0; k < (1u << 24); k += 97) {
+    const float u = float(k) * (1.0f / 16777216.0f);
+    const auto cs = f.kernel.cosSin2Pi(u);
+    const double angle = 2.0 * M_PI * double(u);
+    worst = std::max({worst, std::abs(cs.x - std::cos(angle)), std::abs(cs.y - std::sin(angle))});
+  }
+  // Float rounding of a Horner polynomial on [0, pi/4]: a few ulps of 1.
+  EXPECT_LT(worst, 4e-7);
+}
+
+TEST(SharedMath, LinearIntervalSamplerInvertsItsCdfAndStaysInside) {
+  SamplerFixture f(makeLineSpd(500.0));
+  for (float slope : {-1.0f, -0.999f, -0.3f, 0.0f, 0.5f, 1.0f}) {
+    for (float u : {0.0f, 1e-7f, 0.25f, 0.5f, 0.9f, 1.0f - 1.0f / 16777216.0f}) {
+      const float t = f.kernel.sampleLinearInInterval(u, slope);
+      ASSERT_TRUE(std::isfinite(t));
+      ASSERT_GE(t, 0.0f);
+      ASSERT_LE(t, 1.0f);
+      const double a = 1.0 - slope, b = 1.0 + slope;
+      const double cdf = (a * t + 0.5 * (b - a) * double(t) * t) / (0.5 * (a + b));
+      EXPECT_NEAR(cdf, u, 2e-6) << "slope " << slope << " u " << u;
+    }
+  }
+}
+
+TEST(SharedMath, DirectionSamplersAreUnitVectors) {
+  SamplerFixture f(makeLineSpd(500.0));
+  for (uint64_t i = 0; i < 100000; ++i) {
+    const auto w = philoxWords(9, i, 0);
+    const float u = uniformFromWord(w[0]), v = uniformFromWord(w[1]);
+    for (auto d : {f.kernel.sampleSphere(u, v), f.kernel.sampleCosineHemisphere(u, v), f.kernel.sampleCone(u, v, 0.1f)}) {
+      ASSERT_NEAR(glm::length(glm::dvec3(d)), 1.0, 1e-6);
+    }
+    ASSERT_GE(f.kernel.sampleCosineHemisphere(u, v).z, 0.0f);
+    ASSERT_GE(f.kernel.sampleCone(u, v, 0.1f).z, 0.9f - 1e-6f);
+  }
+}
+
+}  // namespace
+}  // namespace spectrace

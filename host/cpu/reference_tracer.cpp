@@ -1,0 +1,54 @@
+#include "cpu/reference_tracer.h"
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include "cpu/beam_kernel.h"
+
+namespace spectrace {
+
+uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCount,
+                    SpectralHistogram& histogram, const CpuTraceOptions& options) {
+  if (histogram.pixelsX != plan.pixelsX || histogram.pixelsY != plan.pixelsY || histogram.bins != plan.bins)
+    histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins);
+  const device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals);
+  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+
+  // Threads take blocks of beams in order. When cancelled, each finishes
+  // its block, so the traced beams stay one contiguous prefix.
+  constexpr uint64_t kBlock = 1 << 16;
+  const uint64_t blockCount = (beamCount + kBlock - 1) / kBlock;
+  std::atomic<uint64_t> nextBlock{0};
+  std::atomic<uint64_t> stoppedAtBlock{blockCount};
+  uint64_t* counts = histogram.counts.data();
+  const uint32_t bins = plan.bins;
+
+  auto worker = [&] {
+    device::BeamKernel local = kernel;
+    for (;;) {
+      const uint64_t block = nextBlock.fetch_add(1, std::memory_order_relaxed);
+      if (block >= blockCount) return;
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        uint64_t expected = stoppedAtBlock.load();
+        while (block < expected && !stoppedAtBlock.compare_exchange_weak(expected, block)) {}
+        return;
+      }
+      const uint64_t begin = block * kBlock;
+      const uint64_t end = std::min(beamCount, begin + kBlock);
+      for (uint64_t i = begin; i < end; ++i) {
+        uint32_t pixel, bin;
+        if (local.trace(firstBeam + i, pixel, bin)) {
+          std::atomic_ref<uint64_t>(counts[size_t(pixel) * bins + bin]).fetch_add(1, std::memory_order_relaxed);
+        }
+      }
+    }
+  };
+  std::vector<std::jthread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  pool.clear();  // joins
+  return std::min(beamCount, stoppedAtBlock.load() * kBlock);
+}
+
+}  // namespace spectrace

@@ -1,0 +1,24 @@
+#pragma once
+// Histogram -> image on the host (double precision): used by --device cpu
+// and as the reference for the resolve shader.
+#include <array>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+
+#include "cpu/spectral_histogram.h"
+#include "io/image.h"
+
+namespace spectrace {
+
+// What turns counts into colour: the bin weights are 683 x the bin-averaged
+// CMFs (lm/W), the matrix maps XYZ to linear sRGB.
+struct ResolveParameters {
+  std::vector<std::array<double, 3>> binWeights;
+  glm::dmat3 xyzToRgb{1.0};
+  double irradiancePerCount = 0.0;  // W/m^2 per count
+};
+
+RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters);
+
+}  // namespace spectrace

@@ -1,0 +1,34 @@
+#pragma once
+// Per-pixel spectral histogram: exact 64-bit counts, [pixel][bin], pixels
+// row-major from the top-left of the upright image. Integer counts make sums
+// order-independent and bit-reproducible, so partial renders merge exactly.
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace spectrace {
+
+struct SpectralHistogram {
+  uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
+  std::vector<uint64_t> counts;
+
+  SpectralHistogram() = default;
+  SpectralHistogram(uint32_t px, uint32_t py, uint32_t nbins)
+      : pixelsX(px), pixelsY(py), bins(nbins), counts(size_t(px) * py * nbins, 0) {}
+
+  uint64_t& at(uint32_t pixel, uint32_t bin) { return counts[size_t(pixel) * bins + bin]; }
+  uint64_t at(uint32_t pixel, uint32_t bin) const { return counts[size_t(pixel) * bins + bin]; }
+  uint64_t total() const {
+    uint64_t sum = 0;
+    for (uint64_t c : counts) sum += c;
+    return sum;
+  }
+  // Adds another histogram of the same shape (a render over other beams).
+  void merge(const SpectralHistogram& other) {
+    if (other.pixelsX != pixelsX || other.pixelsY != pixelsY || other.bins != bins)
+      throw std::invalid_argument("cannot merge histograms of different shapes");
+    for (size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+  }
+};
+
+}  // namespace spectrace

@@ -1,0 +1,119 @@
+#include "lights/trace_plan.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "camera/camera_frame.h"
+#include "spectrum/wavelength_sampler.h"
+
+namespace spectrace {
+namespace {
+
+glm::vec3 toFloat(const glm::dvec3& v) { return glm::vec3(v); }
+
+// Any unit vector perpendicular to `n` (Duff et al. 2017, branchless ONB).
+glm::dvec3 perpendicular(const glm::dvec3& n) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  return {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+}
+
+std::string sceneName(const Scene& scene) {
+  return scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
+}
+
+}  // namespace
+
+TracePlan buildTracePlan(const Scene& scene, uint64_t seed) {
+  TracePlan plan;
+  const SpectrumRange& range = scene.spectrum;
+  const Camera& camera = scene.camera;
+  CameraFrame frame;
+  try {
+    frame = CameraFrame::fromCamera(camera);
+  } catch (const SceneError& e) {
+    throw SceneError(fmt::format("{}: /{}", sceneName(scene), e.what()));
+  }
+
+  plan.pixelsX = uint32_t(camera.pixelsX);
+  plan.pixelsY = uint32_t(camera.pixelsY);
+  plan.bins = uint32_t(range.bins);
+  plan.lambdaMinNm = range.minNm;
+  plan.lambdaMaxNm = range.maxNm;
+  plan.pixelAreaM2 = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
+
+  std::vector<double> selectWeights;
+  for (const Light& light : scene.lights) {
+    LightSummary summary;
+    summary.label = fmt::format("{} ({}, {})", light.label, lightTypeName(light.type), light.spdLabel);
+    summary.powerW = light.powerW;
+    const Spd clipped = light.spd.clipped(range.minNm, range.maxNm);
+    const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
+    summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
+    summary.tracedPowerW = light.powerW * summary.inRangeShare;
+    if (summary.tracedPowerW > 0.0) {
+      summary.traced = true;
+      SpectralTable table = buildSpectralTable(clipped);
+      device::LightRecord record{};
+      record.type = uint32_t(light.type);
+      record.spectralFirst = uint32_t(plan.intervals.size());
+      record.spectralCount = uint32_t(table.intervals.size());
+      plan.intervals.insert(plan.intervals.end(), table.intervals.begin(), table.intervals.end());
+
+      const glm::dvec3 axis = glm::normalize(frame.directionToLocal(light.direction));
+      glm::dvec3 tangent = light.type == LightType::Rect ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
+      tangent = glm::normalize(tangent - axis * glm::dot(tangent, axis));
+      const glm::dvec3 bitangent = glm::cross(axis, tangent);
+      record.position = toFloat(frame.pointToLocal(light.position));
+      record.axis = toFloat(axis);
+      record.tangent = toFloat(tangent);
+      record.bitangent = toFloat(bitangent);
+      switch (light.type) {
+        case LightType::Spot: {
+          // 1 - cos(a) = 2 sin^2(a/2): no cancellation for narrow cones.
+          const double half = light.coneHalfAngleDeg * M_PI / 180.0;
+          const double s = std::sin(0.5 * half);
+          record.param0 = float(2.0 * s * s);
+          break;
+        }
+        case LightType::Disk:
+        case LightType::Laser: record.param0 = float(light.radiusM); break;
+        case LightType::Rect:
+          record.param0 = float(light.sizeM.x);
+          record.param1 = float(light.sizeM.y);
+          break;
+        case LightType::Point: break;
+      }
+      plan.lights.push_back(record);
+      selectWeights.push_back(summary.tracedPowerW);
+      plan.tracedPowerW += summary.tracedPowerW;
+    }
+    plan.summaries.push_back(summary);
+  }
+  if (plan.lights.empty())
+    throw SceneError(fmt::format("{}: /lights: no light emits power inside the spectrum range {}-{} nm",
+                                 sceneName(scene), range.minNm, range.maxNm));
+  const auto lows = quantizeCdf(selectWeights);
+  for (size_t i = 0; i < lows.size(); ++i) plan.lights[i].selectCdfLow = lows[i];
+
+  device::TraceConstants& c = plan.constants;
+  c.sensorHalfSize = glm::vec2(float(0.5 * camera.sensorWidthM), float(0.5 * camera.sensorHeightM));
+  c.pixelsPerMetre = glm::vec2(float(camera.pixelsX / camera.sensorWidthM), float(camera.pixelsY / camera.sensorHeightM));
+  c.pixelsX = plan.pixelsX;
+  c.pixelsY = plan.pixelsY;
+  c.bins = plan.bins;
+  c.lightCount = uint32_t(plan.lights.size());
+  c.lambdaMin = float(range.minNm);
+  c.binsPerNm = float(range.bins / (range.maxNm - range.minNm));
+  if (camera.pinhole) {
+    c.apertureDistance = float(camera.pinhole->distanceM);
+    c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
+  }
+  c.pixelsPerChunk = uint32_t(plan.pixelCount());
+  c.seed = seed;
+  return plan;
+}
+
+}  // namespace spectrace

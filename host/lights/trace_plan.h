@@ -1,0 +1,44 @@
+#pragma once
+// Everything a trace needs, derived from a scene in double precision on the
+// host: the device tables (light records in the camera frame, spectral
+// intervals, integer CDFs) and the physical scale of one count.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "device_shared.h"
+#include "scene/scene.h"
+
+namespace spectrace {
+
+struct LightSummary {
+  std::string label;       // e.g. "/lights/2 (disk, D65)"
+  double powerW = 0.0;     // as given
+  double inRangeShare = 0.0;  // share of the emission inside the spectrum range
+  double tracedPowerW = 0.0;  // powerW * inRangeShare
+  bool traced = false;        // false: never sampled (no power in range)
+};
+
+struct TracePlan {
+  device::TraceConstants constants{};
+  std::vector<device::LightRecord> lights;
+  std::vector<device::SpectralInterval> intervals;
+  std::vector<LightSummary> summaries;  // one per scene light, in scene order
+  double tracedPowerW = 0.0;            // sum over traced lights
+  double pixelAreaM2 = 0.0;
+  double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
+  uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
+
+  uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
+  uint64_t counterCount() const { return pixelCount() * bins; }
+  // W/m^2 per bin carried by one count when `beams` beams were traced: each
+  // beam carries tracedPowerW * exposure / beams joules, spread over one
+  // pixel's area and the exposure time (which cancels).
+  double irradiancePerCount(uint64_t beams) const { return tracedPowerW / (double(beams) * pixelAreaM2); }
+};
+
+// Throws SceneError (with the scene file's name) for scenes that cannot be
+// traced, e.g. when no light has power inside the spectrum range.
+TracePlan buildTracePlan(const Scene& scene, uint64_t seed);
+
+}  // namespace spectrace

@@ -1,0 +1,186 @@
+#include "render/gpu_tracer.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "embedded_shaders.h"
+
+namespace spectrace {
+
+using vk_util::Buffer;
+using vk_util::MemoryPlacement;
+
+namespace {
+
+template <typename T>
+Buffer uploadedBuffer(const vk_util::Context& context, const std::vector<T>& data) {
+  Buffer buffer(context, std::max<vk::DeviceSize>(sizeof(T) * data.size(), 16), {}, MemoryPlacement::DeviceLocal);
+  buffer.upload(data.data(), sizeof(T) * data.size());
+  return buffer;
+}
+
+}  // namespace
+
+HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t bins, uint64_t maxStorageBufferRange,
+                                         uint64_t maxAllocation) {
+  const uint64_t bytesPerPixel = uint64_t(bins) * sizeof(uint64_t);
+  const uint64_t limit = std::min(maxStorageBufferRange, maxAllocation);
+  const uint64_t perChunk = std::min<uint64_t>(pixels, limit / bytesPerPixel);
+  if (perChunk == 0)
+    throw vk_util::VulkanError(fmt::format(
+        "one pixel's histogram ({} bins x 8 bytes) exceeds the device's storage buffer range of {} bytes", bins, limit));
+  HistogramSplit split;
+  split.pixelsPerChunk = uint32_t(std::min<uint64_t>(perChunk, UINT32_MAX));
+  split.chunkCount = uint32_t((pixels + split.pixelsPerChunk - 1) / split.pixelsPerChunk);
+  if (split.chunkCount > device::kMaxHistogramChunks)
+    throw vk_util::VulkanError(fmt::format(
+        "the histogram needs {:.2f} GiB ({} pixels x {} bins x 8 bytes), which is {} buffers of at most "
+        "maxStorageBufferRange = {} bytes; spectrace supports {}. Use fewer pixels or bins.",
+        double(pixels * bytesPerPixel) / (1 << 30), pixels, bins, split.chunkCount, limit,
+        device::kMaxHistogramChunks));
+  return split;
+}
+
+GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize)
+    : context_(context),
+      plan_(plan),
+      workgroupSize_(workgroupSize),
+      split_(HistogramSplit::forDevice(plan.pixelCount(), plan.bins, context.info().maxStorageBufferRange,
+                                       context.info().maxMemoryAllocationSize)),
+      traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
+      lights_(uploadedBuffer(context, plan.lights)),
+      intervals_(uploadedBuffer(context, plan.intervals)),
+      tracePipeline_(context, embedded::spv_trace_beams(),
+                     {{device::kBindingTraceConstants}, {device::kBindingLights}, {device::kBindingSpectralIntervals},
+                      {device::kBindingHistogram, device::kMaxHistogramChunks}},
+                     sizeof(device::TracePush), {workgroupSize}),
+      resolvePipeline_(context, embedded::spv_resolve(),
+                       {{device::kBindingResolveConstants}, {device::kBindingBinWeights},
+                        {device::kBindingResolvedPixels}, {device::kBindingResolveHistogram, device::kMaxHistogramChunks}},
+                       sizeof(device::ResolvePush), {workgroupSize}),
+      timestamps_(context, 2) {
+  plan_.constants.pixelsPerChunk = split_.pixelsPerChunk;
+  traceConstants_.upload(&plan_.constants, sizeof(plan_.constants));
+  const uint64_t pixelBytes = uint64_t(plan.bins) * sizeof(uint64_t);
+  for (uint32_t c = 0; c < split_.chunkCount; ++c) {
+    const uint64_t pixels = std::min<uint64_t>(split_.pixelsPerChunk, plan.pixelCount() - uint64_t(c) * split_.pixelsPerChunk);
+    histogramChunks_.emplace_back(context, pixels * pixelBytes, vk::BufferUsageFlags{}, MemoryPlacement::DeviceLocal);
+  }
+  tracePipeline_.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
+  tracePipeline_.bindBuffer(device::kBindingLights, 0, lights_);
+  tracePipeline_.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
+  // Unused chunk slots alias chunk 0: the descriptors must be valid even
+  // though no pixel maps to them.
+  for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c) {
+    const Buffer& chunk = histogramChunks_[c < split_.chunkCount ? c : 0];
+    tracePipeline_.bindBuffer(device::kBindingHistogram, c, chunk);
+    resolvePipeline_.bindBuffer(device::kBindingResolveHistogram, c, chunk);
+  }
+  clearHistogram();
+}
+
+void GpuTracer::clearHistogram() {
+  for (auto& chunk : histogramChunks_) chunk.fillZero();
+}
+
+uint64_t GpuTracer::maxBeamsPerDispatch() const {
+  const auto& limits = context_.info().maxComputeWorkGroupCount;
+  const uint64_t perDispatch = uint64_t(limits[0]) * limits[1] * workgroupSize_;
+  return std::min<uint64_t>(perDispatch, uint64_t(1) << 31);
+}
+
+double GpuTracer::trace(uint64_t firstBeam, uint64_t beamCount) {
+  double seconds = 0.0;
+  const uint32_t maxGroupsX = context_.info().maxComputeWorkGroupCount[0];
+  while (beamCount > 0) {
+    const uint64_t count = std::min(beamCount, maxBeamsPerDispatch());
+    const uint64_t groups = (count + workgroupSize_ - 1) / workgroupSize_;
+    const uint32_t groupsX = uint32_t(std::min<uint64_t>(groups, maxGroupsX));
+    const uint32_t groupsY = uint32_t((groups + groupsX - 1) / groupsX);
+    const device::TracePush push{firstBeam, uint32_t(count), groupsX * workgroupSize_};
+    context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
+      timestamps_.reset(cb);
+      timestamps_.write(cb, 0);
+      tracePipeline_.recordDispatch(cb, &push, groupsX, groupsY);
+      timestamps_.write(cb, 1);
+    });
+    const auto ns = timestamps_.readNanoseconds();
+    if (ns.size() == 2) seconds += (ns[1] - ns[0]) * 1e-9;
+    firstBeam += count;
+    beamCount -= count;
+  }
+  return seconds;
+}
+
+SpectralHistogram GpuTracer::downloadHistogram() const {
+  SpectralHistogram histogram(plan_.pixelsX, plan_.pixelsY, plan_.bins);
+  size_t offset = 0;
+  for (const auto& chunk : histogramChunks_) {
+    chunk.download(histogram.counts.data() + offset, chunk.size());
+    offset += chunk.size() / sizeof(uint64_t);
+  }
+  return histogram;
+}
+
+RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seconds) {
+  device::ResolveConstants constants{};
+  const uint64_t pixelCount = plan_.pixelCount();
+  constants.pixelCount = uint32_t(pixelCount);
+  constants.bins = plan_.bins;
+  constants.pixelsPerChunk = split_.pixelsPerChunk;
+  constants.irradiancePerCount = float(parameters.irradiancePerCount);
+  // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
+  const glm::dmat3& m = parameters.xyzToRgb;
+  constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);
+  constants.xyzToRgbRow1 = glm::vec3(m[0][1], m[1][1], m[2][1]);
+  constants.xyzToRgbRow2 = glm::vec3(m[0][2], m[1][2], m[2][2]);
+  std::vector<glm::vec3> weights;
+  for (const auto& w : parameters.binWeights) weights.emplace_back(float(w[0]), float(w[1]), float(w[2]));
+
+  Buffer constantsBuffer(context_, sizeof(constants), {}, MemoryPlacement::DeviceLocal);
+  constantsBuffer.upload(&constants, sizeof(constants));
+  Buffer weightsBuffer = uploadedBuffer(context_, weights);
+  const uint64_t maxSliceByRange = std::min<uint64_t>(
+      pixelCount, std::min(context_.info().maxStorageBufferRange, context_.info().maxMemoryAllocationSize) /
+                      sizeof(device::ResolvedPixel));
+  // One row of workgroups per slice.
+  const uint64_t maxSlice = std::min<uint64_t>(maxSliceByRange, uint64_t(context_.info().maxComputeWorkGroupCount[0]) * workgroupSize_);
+  Buffer output(context_, maxSlice * sizeof(device::ResolvedPixel), {}, MemoryPlacement::HostVisible);
+  resolvePipeline_.bindBuffer(device::kBindingResolveConstants, 0, constantsBuffer);
+  resolvePipeline_.bindBuffer(device::kBindingBinWeights, 0, weightsBuffer);
+  resolvePipeline_.bindBuffer(device::kBindingResolvedPixels, 0, output);
+
+  RenderImage image;
+  image.width = int(plan_.pixelsX);
+  image.height = int(plan_.pixelsY);
+  image.rgb.resize(pixelCount * 3);
+  image.xyz.resize(pixelCount * 3);
+  image.irradiance.resize(pixelCount);
+  std::vector<device::ResolvedPixel> slice(maxSlice);
+  double deviceSeconds = 0.0;
+  for (uint64_t first = 0; first < pixelCount; first += maxSlice) {
+    const uint32_t count = uint32_t(std::min(maxSlice, pixelCount - first));
+    const device::ResolvePush push{uint32_t(first), count};
+    context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
+      timestamps_.reset(cb);
+      timestamps_.write(cb, 0);
+      resolvePipeline_.recordDispatch(cb, &push, (count + workgroupSize_ - 1) / workgroupSize_);
+      timestamps_.write(cb, 1);
+    });
+    const auto ns = timestamps_.readNanoseconds();
+    if (ns.size() == 2) deviceSeconds += (ns[1] - ns[0]) * 1e-9;
+    output.download(slice.data(), count * sizeof(device::ResolvedPixel));
+    for (uint32_t i = 0; i < count; ++i) {
+      const size_t p = first + i;
+      for (int k = 0; k < 3; ++k) {
+        image.rgb[p * 3 + k] = slice[i].rgb[k];
+        image.xyz[p * 3 + k] = slice[i].xyz[k];
+      }
+      image.irradiance[p] = slice[i].irradiance;
+    }
+  }
+  if (seconds) *seconds = deviceSeconds;
+  return image;
+}
+
+}  // namespace spectrace

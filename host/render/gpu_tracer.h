@@ -1,0 +1,57 @@
+#pragma once
+// The Vulkan path: trace pass (beams -> 64-bit histogram chunks) and resolve
+// pass (histogram -> XYZ/RGB/irradiance), both on one device.
+#include <cstdint>
+#include <vector>
+
+#include "cpu/resolve_cpu.h"
+#include "cpu/spectral_histogram.h"
+#include "lights/trace_plan.h"
+#include "vulkan/buffer.h"
+#include "vulkan/compute_pipeline.h"
+#include "vulkan/context.h"
+#include "vulkan/timestamps.h"
+
+namespace spectrace {
+
+// How the histogram is split across storage buffers: whole pixels per
+// chunk, each chunk within the device's maxStorageBufferRange.
+struct HistogramSplit {
+  uint32_t pixelsPerChunk = 0;
+  uint32_t chunkCount = 0;
+  // Throws vk_util::VulkanError when the histogram needs more than
+  // kMaxHistogramChunks chunks.
+  static HistogramSplit forDevice(uint64_t pixels, uint32_t bins, uint64_t maxStorageBufferRange,
+                                  uint64_t maxAllocation);
+};
+
+class GpuTracer {
+ public:
+  GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64);
+
+  // Adds beams [firstBeam, firstBeam + beamCount) to the device histogram.
+  // Returns the device time of the trace pass in seconds (timestamps).
+  double trace(uint64_t firstBeam, uint64_t beamCount);
+  void clearHistogram();
+  SpectralHistogram downloadHistogram() const;
+  // Resolves on the device; `seconds` receives the device time if non-null.
+  RenderImage resolve(const ResolveParameters& parameters, double* seconds = nullptr);
+
+  const HistogramSplit& split() const { return split_; }
+  uint64_t maxBeamsPerDispatch() const;
+
+ private:
+  const vk_util::Context& context_;
+  TracePlan plan_;
+  uint32_t workgroupSize_;
+  HistogramSplit split_;
+  vk_util::Buffer traceConstants_;
+  vk_util::Buffer lights_;
+  vk_util::Buffer intervals_;
+  std::vector<vk_util::Buffer> histogramChunks_;
+  vk_util::ComputePipeline tracePipeline_;
+  vk_util::ComputePipeline resolvePipeline_;
+  vk_util::TimestampQueries timestamps_;
+};
+
+}  // namespace spectrace

@@ -1,0 +1,55 @@
+#pragma once
+// A whole render: choose a device, trace in batches (checkpointing and
+// honouring cancellation between them), resolve to an image.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "cpu/resolve_cpu.h"
+#include "cpu/spectral_histogram.h"
+#include "io/image.h"
+#include "lights/trace_plan.h"
+#include "scene/scene.h"
+
+namespace spectrace {
+
+enum class DeviceChoice { Auto, Gpu, Cpu };
+DeviceChoice parseDeviceChoice(const std::string& text);  // throws std::invalid_argument
+
+struct RenderOptions {
+  uint64_t beams = 0;        // total beams
+  uint64_t firstBeam = 0;    // index of the first beam (disjoint ranges merge exactly)
+  uint64_t seed = 1;
+  DeviceChoice device = DeviceChoice::Auto;
+  unsigned cpuThreads = 0;           // 0: all hardware threads
+  uint32_t workgroupSize = 64;
+  uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
+  const std::atomic<bool>* cancel = nullptr;
+  double checkpointSeconds = 60.0;   // 0 disables checkpoints
+  // Called between batches at most every checkpointSeconds with the image
+  // of the beams finished so far, their count and the device's label.
+  std::function<void(const RenderImage&, uint64_t beamsDone, const std::string& device)> onCheckpoint;
+  std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
+  std::function<void(const std::string&)> log;  // device choice and notices
+};
+
+struct RenderResult {
+  TracePlan plan;
+  SpectralHistogram histogram;
+  RenderImage image;
+  uint64_t beamsTraced = 0;     // < options.beams only when cancelled
+  std::string deviceKind;       // "gpu" or "cpu"
+  std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads"
+  double wallSeconds = 0.0;
+  double traceDeviceSeconds = 0.0;    // GPU timestamps (0 on the CPU)
+  double resolveDeviceSeconds = 0.0;
+};
+
+RenderResult render(const Scene& scene, const RenderOptions& options);
+
+// The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
+// the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.
+ResolveParameters resolveParametersFor(const Scene& scene, const TracePlan& plan, uint64_t beams);
+
+}  // namespace spectrace

@@ -1,0 +1,210 @@
+// Beam generation and camera intersection, written once in the common subset
+// of GLSL and C++/GLM. The shaders include it directly; the CPU reference
+// includes it inside namespace spectrace::device (host/cpu/beam_math_cpu.h).
+// Sharing one text keeps the order of every float operation identical, and
+// PRECISE (GLSL `precise`, i.e. SPIR-V NoContraction) stops the shader
+// compiler from fusing or reordering it; the host builds with
+// -ffp-contract=off. Only + - * / and sqrt are used: they are correctly
+// rounded on both sides, unlike sin/cos, which are replaced by polynomials.
+//
+// The includer provides:
+//   uint64_t readLightCdf(uint light)          LightRecord.selectCdfLow
+//   uint64_t readSpectralCdf(uint interval)    SpectralInterval.cdfLow
+// and the types of device_shared.h.
+#ifndef SPECTRACE_BEAM_MATH_H
+#define SPECTRACE_BEAM_MATH_H
+
+#ifdef __cplusplus
+#define PRECISE
+#define OUT(T) T&
+#define FN inline
+#else
+#define PRECISE precise
+#define OUT(T) out T
+#define FN
+#endif
+
+// (x >> 8) * 2^-24: exact in float32, in [0, 1 - 2^-24].
+FN float uniformFromWord(uint x) { return float(x >> 8) * (1.0f / 16777216.0f); }
+
+FN uint64_t joinWords(uint lo, uint hi) { return (uint64_t(hi) << 32) | uint64_t(lo); }
+
+// Largest index j in [0, count) with cdfLow[first + j] <= u, where
+// cdfLow[first] == 0. Entries with equal cdfLow (zero probability) are never
+// returned. ceil(log2(count)) steps, the same for every u.
+#define SPECTRACE_CDF_SEARCH(NAME, READ)              \
+  FN uint NAME(uint first, uint count, uint64_t u) {  \
+    uint lo = 0u;                                     \
+    uint len = count;                                 \
+    while (len > 1u) {                                \
+      uint step = len / 2u;                          \
+      if (READ(first + lo + step) <= u) lo += step;   \
+      len -= step;                                    \
+    }                                                 \
+    return first + lo;                                \
+  }
+
+// cos and sin of 2*pi*u for u = k * 2^-24. Quadrant and octant reduction is
+// exact; the polynomials are the Taylor series to x^11 / x^12 on
+// [0, pi/4], whose truncation error (< 1e-11) is far below float rounding.
+FN vec2 cosSin2Pi(float u) {
+  PRECISE float q4 = u * 4.0f;               // exact
+  uint quadrant = uint(q4);
+  PRECISE float r = q4 - float(quadrant);    // exact, in [0, 1)
+  bool upperHalf = r > 0.5f;
+  PRECISE float rr = upperHalf ? 1.0f - r : r;  // exact, in [0, 0.5]
+  PRECISE float x = rr * 1.57079632679489662f;  // angle in [0, pi/4]
+  PRECISE float x2 = x * x;
+  PRECISE float s = x * (1.0f + x2 * (-1.66666666666666667e-1f + x2 * (8.33333333333333333e-3f +
+                    x2 * (-1.98412698412698413e-4f + x2 * (2.75573192239858907e-6f +
+                    x2 * (-2.50521083854417188e-8f))))));
+  PRECISE float c = 1.0f + x2 * (-0.5f + x2 * (4.16666666666666667e-2f + x2 * (-1.38888888888888889e-3f +
+                    x2 * (2.48015873015873016e-5f + x2 * (-2.75573192239858907e-7f +
+                    x2 * 2.08767569878680990e-9f)))));
+  PRECISE float cq = upperHalf ? s : c;      // cos and sin of the angle within the quadrant
+  PRECISE float sq = upperHalf ? c : s;
+  vec2 result;
+  if (quadrant == 0u) result = vec2(cq, sq);
+  else if (quadrant == 1u) result = vec2(-sq, cq);
+  else if (quadrant == 2u) result = vec2(-cq, -sq);
+  else result = vec2(sq, -cq);
+  return result;
+}
+
+// Position in [0, 1] within an interval whose density falls linearly from
+// (1 - slope) to (1 + slope). Inverts the quadratic CDF in the form
+// t = 2u / (a + sqrt((1-u) a^2 + u b^2)), which has no cancellation; all
+// terms stay within [0, 4] whatever the SPD's absolute scale.
+FN float sampleLinearInInterval(float u, float slope) {
+  PRECISE float a = 1.0f - slope;
+  PRECISE float b = 1.0f + slope;
+  PRECISE float inner = (1.0f - u) * (a * a) + u * (b * b);
+  PRECISE float denominator = a + sqrt(inner);
+  PRECISE float t = denominator > 0.0f ? (2.0f * u) / denominator : 0.0f;
+  return min(t, 1.0f);
+}
+
+// Wavelength in nm inside the chosen interval.
+FN float wavelengthInInterval(float lambda0, float width, float slope, float u) {
+  PRECISE float t = sampleLinearInInterval(u, slope);
+  PRECISE float lambda = lambda0 + width * t;
+  return lambda;
+}
+
+// Histogram bin of a wavelength in [lambdaMin, lambdaMin + bins / binsPerNm].
+FN uint binOfWavelength(float lambda, float lambdaMin, float binsPerNm, uint bins) {
+  PRECISE float x = (lambda - lambdaMin) * binsPerNm;
+  uint bin = x > 0.0f ? uint(x) : 0u;
+  return min(bin, bins - 1u);
+}
+
+// Uniform direction on the unit sphere (point lights).
+FN vec3 sampleSphere(float u, float v) {
+  PRECISE float z = 1.0f - 2.0f * u;                      // exact
+  PRECISE float r = 2.0f * sqrt(u * (1.0f - u));          // sin(theta), no cancellation near the poles
+  vec2 cs = cosSin2Pi(v);
+  PRECISE vec3 d = vec3(r * cs.x, r * cs.y, z);
+  return d;
+}
+
+// Local direction uniform in solid angle inside a cone around +z, where
+// oneMinusCos = 1 - cos(half angle) (computed on the host in double).
+FN vec3 sampleCone(float u, float v, float oneMinusCos) {
+  PRECISE float h = u * oneMinusCos;                      // 1 - cos(theta)
+  PRECISE float cosTheta = 1.0f - h;
+  PRECISE float sinTheta = sqrt(h * (2.0f - h));          // no cancellation for narrow cones
+  vec2 cs = cosSin2Pi(v);
+  PRECISE vec3 d = vec3(sinTheta * cs.x, sinTheta * cs.y, cosTheta);
+  return d;
+}
+
+// Cosine-weighted local direction around +z (Lambertian emitters).
+FN vec3 sampleCosineHemisphere(float u, float v) {
+  PRECISE float r = sqrt(u);
+  PRECISE float z = sqrt(1.0f - u);                       // 1 - u is exact
+  vec2 cs = cosSin2Pi(v);
+  PRECISE vec3 d = vec3(r * cs.x, r * cs.y, z);
+  return d;
+}
+
+// Point uniform on a disk of the given radius, in local (x, y).
+FN vec2 sampleDisk(float u, float v, float radius) {
+  PRECISE float r = radius * sqrt(u);
+  vec2 cs = cosSin2Pi(v);
+  PRECISE vec2 p = vec2(r * cs.x, r * cs.y);
+  return p;
+}
+
+FN vec3 toFrame(vec3 local, vec3 tangent, vec3 bitangent, vec3 axis) {
+  PRECISE vec3 w = tangent * local.x + bitangent * local.y + axis * local.z;
+  return w;
+}
+
+// The seed's getNextBeam(): origin and direction of a beam from one light,
+// in the camera frame, from four uniforms (origin u, v; direction u, v).
+FN void emitBeam(uint type, vec3 position, vec3 axis, vec3 tangent, vec3 bitangent,
+                 float param0, float param1, float ou, float ov, float du, float dv,
+                 OUT(vec3) origin, OUT(vec3) direction) {
+  if (type == kLightPoint) {
+    origin = position;
+    direction = sampleSphere(du, dv);
+  } else if (type == kLightSpot) {
+    origin = position;
+    direction = toFrame(sampleCone(du, dv, param0), tangent, bitangent, axis);
+  } else if (type == kLightDisk) {
+    vec2 p = sampleDisk(ou, ov, param0);
+    PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
+    origin = o;
+    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
+  } else if (type == kLightRect) {
+    PRECISE float x = (ou - 0.5f) * param0;
+    PRECISE float y = (ov - 0.5f) * param1;
+    PRECISE vec3 o = position + tangent * x + bitangent * y;
+    origin = o;
+    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
+  } else {  // laser: collimated, uniform disk cross-section
+    vec2 p = sampleDisk(ou, ov, param0);
+    PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
+    origin = o;
+    direction = axis;
+  }
+}
+
+// The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
+// camera frame and looks along +z, so a beam counts only when it travels
+// towards -z from z > 0 (with a pinhole: from beyond the aperture plane and
+// through the aperture disk). Returns the pixel index, or false for a miss.
+// A beam parallel to the sensor (direction.z == 0) never reaches the
+// division; NaN or infinite hit points fail the bounds tests.
+FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetre, uint pixelsX,
+                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uint) pixel) {
+  pixel = 0u;
+  if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
+  PRECISE float hx;
+  PRECISE float hy;
+  bool flip = apertureDistance > 0.0f;
+  if (flip) {
+    PRECISE float ta = (origin.z - apertureDistance) / -direction.z;
+    PRECISE float ax = origin.x + ta * direction.x;
+    PRECISE float ay = origin.y + ta * direction.y;
+    if (!(ax * ax + ay * ay <= apertureRadiusSq)) return false;
+    PRECISE float ts = apertureDistance / -direction.z;
+    hx = ax + ts * direction.x;
+    hy = ay + ts * direction.y;
+  } else {
+    PRECISE float t = origin.z / -direction.z;
+    hx = origin.x + t * direction.x;
+    hy = origin.y + t * direction.y;
+  }
+  if (!(abs(hx) < halfSize.x) || !(abs(hy) < halfSize.y)) return false;
+  // Image columns run along +x (camera right) and rows down from +y; a
+  // pinhole image is inverted on the sensor, so flip it upright.
+  PRECISE float fx = flip ? (halfSize.x - hx) * pixelsPerMetre.x : (hx + halfSize.x) * pixelsPerMetre.x;
+  PRECISE float fy = flip ? (hy + halfSize.y) * pixelsPerMetre.y : (halfSize.y - hy) * pixelsPerMetre.y;
+  uint column = min(uint(max(fx, 0.0f)), pixelsX - 1u);
+  uint row = min(uint(max(fy, 0.0f)), pixelsY - 1u);
+  pixel = row * pixelsX + column;
+  return true;
+}
+
+#endif  // SPECTRACE_BEAM_MATH_H

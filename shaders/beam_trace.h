@@ -1,0 +1,47 @@
+// One beam from index to (pixel, bin), shared by the trace shader and the
+// CPU reference (see beam_math.h). The includer also provides
+//   uvec4 philox4x32(uint64_t seed, uint64_t index, uint block)
+//   LightRecord readLight(uint i); SpectralInterval readInterval(uint i)
+// and `constants` (TraceConstants).
+#ifndef SPECTRACE_BEAM_TRACE_H
+#define SPECTRACE_BEAM_TRACE_H
+
+SPECTRACE_CDF_SEARCH(searchLight, readLightCdf)
+SPECTRACE_CDF_SEARCH(searchSpectralInterval, readSpectralCdf)
+
+// A wavelength from one light's spectral table: the interval by an exact
+// integer CDF over a 64-bit uniform, the position inside it in closed form.
+FN float drawWavelength(uint spectralFirst, uint spectralCount, uint64_t intervalUniform, float positionUniform) {
+  uint intervalIndex = searchSpectralInterval(spectralFirst, spectralCount, intervalUniform);
+  SpectralInterval interval = readInterval(intervalIndex);
+  return wavelengthInInterval(interval.lambda0, interval.width, interval.slope, positionUniform);
+}
+
+// Returns whether beam `beamIndex` reaches the sensor, and where: the pixel
+// and wavelength bin. Every random number comes from (seed, beamIndex,
+// block), so the result is independent of batching, threads and device.
+FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin) {
+  uvec4 select = philox4x32(constants.seed, beamIndex, kRngBlockSelect);
+  uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
+  uvec4 extra = philox4x32(constants.seed, beamIndex, kRngBlockExtra);
+
+  // Light in proportion to its traced power, then interval in proportion to
+  // its power: both exact integer CDFs over 64-bit uniforms.
+  uint lightIndex = constants.lightCount > 1u
+      ? searchLight(0u, constants.lightCount, joinWords(select.x, select.y)) : 0u;
+  LightRecord light = readLight(lightIndex);
+  float lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(select.z, select.w),
+                                uniformFromWord(geometry.x));
+  bin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.bins);
+
+  vec3 origin;
+  vec3 direction;
+  emitBeam(light.type, light.position, light.axis, light.tangent, light.bitangent, light.param0,
+           light.param1, uniformFromWord(geometry.y), uniformFromWord(geometry.z),
+           uniformFromWord(geometry.w), uniformFromWord(extra.x), origin, direction);
+  return hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
+                   constants.pixelsX, constants.pixelsY, constants.apertureDistance,
+                   constants.apertureRadiusSq, pixel);
+}
+
+#endif  // SPECTRACE_BEAM_TRACE_H

@@ -1,0 +1,146 @@
+// Buffer layouts and binding indices shared by C++ and GLSL, so the two can
+// never drift apart (nvpro-samples' host_device.h pattern). Scalar block
+// layout on the GLSL side; static_asserts pin the C++ sizes.
+#ifndef SPECTRACE_DEVICE_SHARED_H
+#define SPECTRACE_DEVICE_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+namespace spectrace::device {
+using uint = uint32_t;
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+#define SPECTRACE_CONSTANT constexpr
+#else
+#define SPECTRACE_CONSTANT const
+#endif
+
+// Descriptor bindings of the trace pipeline (set 0).
+SPECTRACE_CONSTANT uint kBindingTraceConstants = 0;
+SPECTRACE_CONSTANT uint kBindingLights = 1;
+SPECTRACE_CONSTANT uint kBindingSpectralIntervals = 2;
+SPECTRACE_CONSTANT uint kBindingHistogram = 3;  // array of kMaxHistogramChunks
+// Resolve pipeline (set 0).
+SPECTRACE_CONSTANT uint kBindingResolveConstants = 0;
+SPECTRACE_CONSTANT uint kBindingBinWeights = 1;
+SPECTRACE_CONSTANT uint kBindingResolvedPixels = 2;
+SPECTRACE_CONSTANT uint kBindingResolveHistogram = 3;  // array of kMaxHistogramChunks
+// RNG check pipeline.
+SPECTRACE_CONSTANT uint kBindingRngWords = 0;
+
+// Histograms larger than maxStorageBufferRange are split into up to this many
+// buffers, each holding whole pixels. A fixed array indexed through a switch
+// works without non-uniform descriptor indexing (lavapipe lacks it).
+SPECTRACE_CONSTANT uint kMaxHistogramChunks = 8;
+
+// Specialisation constant ids.
+SPECTRACE_CONSTANT uint kSpecWorkgroupSize = 0;
+
+// Light types (match spectrace::LightType).
+SPECTRACE_CONSTANT uint kLightPoint = 0;
+SPECTRACE_CONSTANT uint kLightSpot = 1;
+SPECTRACE_CONSTANT uint kLightDisk = 2;
+SPECTRACE_CONSTANT uint kLightRect = 3;
+SPECTRACE_CONSTANT uint kLightLaser = 4;
+
+// Philox counter blocks: each gives four 32-bit words per beam.
+SPECTRACE_CONSTANT uint kRngBlockSelect = 0;    // light (64 bit), spectral interval (64 bit)
+SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;  // lambda-in-interval, origin u, origin v, direction u
+SPECTRACE_CONSTANT uint kRngBlockExtra = 2;     // direction v
+
+// One light, in the camera frame (metres, single precision). Built on the
+// host from the scene in double precision.
+struct LightRecord {
+  uint64_t selectCdfLow;  // P(light) = (next light's value, or 2^64, - this) / 2^64
+  uint type;
+  uint spectralFirst;     // first SpectralInterval of this light
+  uint spectralCount;     // number of intervals (>= 1)
+  float param0;           // spot: 1 - cos(half angle); disk/laser: radius; rect: width
+  float param1;           // rect: height
+  float padding0;
+  vec3 position;          // point/spot/laser origin, disk/rect centre
+  vec3 axis;              // spot/laser direction, disk/rect normal
+  vec3 tangent;           // with bitangent, completes an orthonormal frame
+  vec3 bitangent;
+};
+
+// One interval of a light's piecewise-linear SPD, restricted to the
+// spectrum range and trimmed to its support.
+struct SpectralInterval {
+  uint64_t cdfLow;   // P(interval) = (next cdfLow, or 2^64 after the light's last, - this) / 2^64
+  float lambda0;     // nm
+  float width;       // nm (0 for a Dirac line)
+  float slope;       // (f1 - f0) / (f1 + f0), in [-1, 1]
+  float padding0;
+};
+
+// Scene-wide constants of the trace pass.
+struct TraceConstants {
+  vec2 sensorHalfSize;      // metres
+  vec2 pixelsPerMetre;
+  uint pixelsX;
+  uint pixelsY;
+  uint bins;
+  uint lightCount;
+  float lambdaMin;          // nm
+  float binsPerNm;
+  float apertureDistance;   // metres in front of the sensor; 0 = bare sensor
+  float apertureRadiusSq;   // metres^2
+  uint pixelsPerChunk;      // histogram chunk size in whole pixels
+  uint padding0;
+  uint64_t seed;
+};
+
+// Per-dispatch push constants of the trace pass.
+struct TracePush {
+  uint64_t beamBase;   // index of the first beam of this dispatch
+  uint beamCount;      // beams in this dispatch
+  uint beamsPerRow;    // invocations per row of the 2D dispatch
+};
+
+struct ResolveConstants {
+  uint pixelCount;
+  uint bins;
+  uint pixelsPerChunk;
+  float irradiancePerCount;  // W/m^2 carried by one count (per bin)
+  vec3 xyzToRgbRow0;         // linear sRGB = rows . XYZ
+  vec3 xyzToRgbRow1;
+  vec3 xyzToRgbRow2;
+};
+
+// Resolve output: one per pixel.
+struct ResolvedPixel {
+  vec3 rgb;          // linear sRGB
+  vec3 xyz;          // CIE XYZ, Y in lux
+  float irradiance;  // W/m^2 over all bins
+};
+
+// Per-dispatch push constants of the resolve pass: a slice of pixels, so the
+// output buffer never exceeds maxStorageBufferRange.
+struct ResolvePush {
+  uint firstPixel;
+  uint pixelCount;
+};
+
+struct RngCheckPush {
+  uint64_t seed;
+  uint64_t firstIndex;
+  uint count;
+  uint block;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(LightRecord) == 80);
+static_assert(sizeof(SpectralInterval) == 24);
+static_assert(sizeof(TraceConstants) == 64);
+static_assert(sizeof(TracePush) == 16);
+static_assert(sizeof(ResolveConstants) == 52);
+static_assert(sizeof(ResolvedPixel) == 28);
+static_assert(sizeof(RngCheckPush) == 24);
+static_assert(sizeof(ResolvePush) == 8);
+}  // namespace spectrace::device
+#endif
+
+#endif  // SPECTRACE_DEVICE_SHARED_H

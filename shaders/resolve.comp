@@ -1,0 +1,60 @@
+#version 460
+// Histogram -> XYZ, linear sRGB and total irradiance, one invocation per
+// pixel (the seed's Camera.getPixels()). Bin weights are 683 x the
+// bin-averaged CMFs, integrated in double precision on the host.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_scalar_block_layout : require
+#include "device_shared.h"
+
+layout(local_size_x_id = 0) in;
+
+layout(set = 0, binding = kBindingResolveConstants, scalar) readonly buffer ResolveConstantsBlock {
+  ResolveConstants rc;
+};
+layout(set = 0, binding = kBindingBinWeights, scalar) readonly buffer BinWeightBlock {
+  vec3 binWeights[];
+};
+layout(set = 0, binding = kBindingResolvedPixels, scalar) writeonly buffer ResolvedBlock {
+  ResolvedPixel resolved[];
+};
+layout(set = 0, binding = kBindingResolveHistogram, scalar) readonly buffer HistogramChunk {
+  uint64_t counts[];
+} histogram[kMaxHistogramChunks];
+layout(push_constant, scalar) uniform PushBlock {
+  ResolvePush push;
+};
+
+uint64_t readCount(uint chunk, uint index) {
+  switch (chunk) {
+    case 0u: return histogram[0].counts[index];
+    case 1u: return histogram[1].counts[index];
+    case 2u: return histogram[2].counts[index];
+    case 3u: return histogram[3].counts[index];
+    case 4u: return histogram[4].counts[index];
+    case 5u: return histogram[5].counts[index];
+    case 6u: return histogram[6].counts[index];
+    default: return histogram[7].counts[index];
+  }
+}
+
+void main() {
+  uint slot = gl_GlobalInvocationID.x;
+  if (slot >= push.pixelCount) return;
+  uint pixel = push.firstPixel + slot;
+  uint chunk = pixel / rc.pixelsPerChunk;
+  uint base = (pixel - chunk * rc.pixelsPerChunk) * rc.bins;
+  uint64_t total = 0ul;  // exact
+  vec3 weighted = vec3(0.0);
+  for (uint b = 0u; b < rc.bins; ++b) {
+    uint64_t count = readCount(chunk, base + b);
+    total += count;
+    weighted += float(count) * binWeights[b];
+  }
+  vec3 xyz = weighted * rc.irradiancePerCount;
+  ResolvedPixel result;
+  result.xyz = xyz;
+  result.rgb = vec3(dot(rc.xyzToRgbRow0, xyz), dot(rc.xyzToRgbRow1, xyz), dot(rc.xyzToRgbRow2, xyz));
+  result.irradiance = float(total) * rc.irradiancePerCount;
+  resolved[slot] = result;
+}

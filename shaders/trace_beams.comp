@@ -1,0 +1,61 @@
+#version 460
+// Beam generation and counting: one invocation per beam. Hits are counted
+// with 64-bit integer atomics (exact, order-independent; float atomics stop
+// growing at 2^24).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "device_shared.h"
+
+layout(local_size_x_id = 0) in;
+
+layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
+  TraceConstants constants;
+};
+layout(set = 0, binding = kBindingLights, scalar) readonly buffer LightBlock {
+  LightRecord lights[];
+};
+layout(set = 0, binding = kBindingSpectralIntervals, scalar) readonly buffer SpectralBlock {
+  SpectralInterval intervals[];
+};
+layout(set = 0, binding = kBindingHistogram, scalar) buffer HistogramChunk {
+  uint64_t counts[];
+} histogram[kMaxHistogramChunks];
+layout(push_constant, scalar) uniform PushBlock {
+  TracePush push;
+};
+
+uint64_t readLightCdf(uint i) { return lights[i].selectCdfLow; }
+uint64_t readSpectralCdf(uint i) { return intervals[i].cdfLow; }
+LightRecord readLight(uint i) { return lights[i]; }
+SpectralInterval readInterval(uint i) { return intervals[i]; }
+
+#include "philox.glsl"
+#include "beam_math.h"
+#include "beam_trace.h"
+
+// Constant indices only: no non-uniform descriptor indexing needed.
+void addCount(uint chunk, uint index) {
+  switch (chunk) {
+    case 0u: atomicAdd(histogram[0].counts[index], 1ul); break;
+    case 1u: atomicAdd(histogram[1].counts[index], 1ul); break;
+    case 2u: atomicAdd(histogram[2].counts[index], 1ul); break;
+    case 3u: atomicAdd(histogram[3].counts[index], 1ul); break;
+    case 4u: atomicAdd(histogram[4].counts[index], 1ul); break;
+    case 5u: atomicAdd(histogram[5].counts[index], 1ul); break;
+    case 6u: atomicAdd(histogram[6].counts[index], 1ul); break;
+    default: atomicAdd(histogram[7].counts[index], 1ul); break;
+  }
+}
+
+void main() {
+  uint local = gl_GlobalInvocationID.y * push.beamsPerRow + gl_GlobalInvocationID.x;
+  if (local >= push.beamCount) return;
+  uint pixel;
+  uint bin;
+  if (traceBeam(push.beamBase + uint64_t(local), pixel, bin)) {
+    uint chunk = pixel / constants.pixelsPerChunk;
+    addCount(chunk, (pixel - chunk * constants.pixelsPerChunk) * constants.bins + bin);
+  }
+}
