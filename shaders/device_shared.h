@@ -22,6 +22,7 @@ SPECTRACE_CONSTANT uint kBindingTraceConstants = 0;
 SPECTRACE_CONSTANT uint kBindingLights = 1;
 SPECTRACE_CONSTANT uint kBindingSpectralIntervals = 2;
 SPECTRACE_CONSTANT uint kBindingHistogram = 3;  // array of kMaxHistogramChunks
+SPECTRACE_CONSTANT uint kBindingBeamRecords = 4;  // only read with kSpecRecordBeams
 // Resolve pipeline (set 0).
 SPECTRACE_CONSTANT uint kBindingResolveConstants = 0;
 SPECTRACE_CONSTANT uint kBindingBinWeights = 1;
@@ -37,6 +38,11 @@ SPECTRACE_CONSTANT uint kMaxHistogramChunks = 8;
 
 // Specialisation constant ids.
 SPECTRACE_CONSTANT uint kSpecWorkgroupSize = 0;
+// Trace pass: when 1, write each beam's (pixel, bin) to the beam records
+// instead of counting it (for beam-by-beam CPU/GPU comparison).
+SPECTRACE_CONSTANT uint kSpecRecordBeams = 1;
+// A beam record of a beam that missed the sensor.
+SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
 
 // Light types (match spectrace::LightType).
 SPECTRACE_CONSTANT uint kLightPoint = 0;

@@ -9,6 +9,7 @@
 #include "device_shared.h"
 
 layout(local_size_x_id = 0) in;
+layout(constant_id = 1) const uint recordBeams = 0u;
 
 layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
   TraceConstants constants;
@@ -22,6 +23,9 @@ layout(set = 0, binding = kBindingSpectralIntervals, scalar) readonly buffer Spe
 layout(set = 0, binding = kBindingHistogram, scalar) buffer HistogramChunk {
   uint64_t counts[];
 } histogram[kMaxHistogramChunks];
+layout(set = 0, binding = kBindingBeamRecords, scalar) writeonly buffer BeamRecordBlock {
+  uvec2 beamRecords[];  // (pixel, bin), or (kBeamMissed, kBeamMissed)
+};
 layout(push_constant, scalar) uniform PushBlock {
   TracePush push;
 };
@@ -54,7 +58,10 @@ void main() {
   if (local >= push.beamCount) return;
   uint pixel;
   uint bin;
-  if (traceBeam(push.beamBase + uint64_t(local), pixel, bin)) {
+  bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin);
+  if (recordBeams != 0u) {
+    beamRecords[local] = hit ? uvec2(pixel, bin) : uvec2(kBeamMissed, kBeamMissed);
+  } else if (hit) {
     uint chunk = pixel / constants.pixelsPerChunk;
     addCount(chunk, (pixel - chunk * constants.pixelsPerChunk) * constants.bins + bin);
   }

@@ -25,7 +25,7 @@ struct SamplerFixture {
   SpectralTable table;
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights{1};
-  BeamKernel kernel;
+  mutable BeamKernel kernel;  // the shared functions are not const-qualified
   explicit SamplerFixture(const Spd& spd)
       : table(buildSpectralTable(spd)), kernel(constants, lights, table.intervals) {
     lights[0].spectralCount = uint32_t(table.intervals.size());
@@ -33,7 +33,7 @@ struct SamplerFixture {
   float draw(uint64_t seed, uint64_t i) const {
     const auto w = philoxWords(seed, i, device::kRngBlockSelect);
     const auto g = philoxWords(seed, i, device::kRngBlockGeometry);
-    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[2], w[3]), uniformFromWord(g[0]));
+    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[2], w[3]), uniformFloat(g[0]));
   }
 };
 
@@ -113,10 +113,11 @@ TEST(IntegerCdf, ZeroWeightsNeverDrawnPositiveAlwaysDrawable) {
     const double p = cdfProbability(lows, j);
     if (weights[j] == 0.0) EXPECT_EQ(p, 0.0) << j;
     else EXPECT_GT(p, 0.0) << j;
-    sum += (unsigned __int128)(j + 1 < lows.size() ? lows[j + 1] : 0) - lows[j];
+    const unsigned __int128 high = j + 1 < lows.size() ? lows[j + 1] : (unsigned __int128)1 << 64;
+    sum += high - lows[j];
   }
-  // Widths telescope to exactly 2^64 (mod 2^128 arithmetic above).
-  EXPECT_EQ(uint64_t(sum + lows.back()), 0u);
+  // Widths sum to exactly 2^64: every 64-bit uniform selects some entry.
+  EXPECT_TRUE(sum == (unsigned __int128)1 << 64);
   // The search never lands on a zero-width entry, even at every boundary.
   SamplerFixture dummy(makeLineSpd(500.0));
   std::vector<device::SpectralInterval> intervals(weights.size());
@@ -130,7 +131,9 @@ TEST(IntegerCdf, ZeroWeightsNeverDrawnPositiveAlwaysDrawable) {
       EXPECT_GT(weights[found], 0.0) << "u=" << u;
       const uint64_t high = found + 1 < lows.size() ? lows[found + 1] : 0;
       EXPECT_GE(u, lows[found]);
-      if (high != 0) EXPECT_LT(u, high);
+      if (high != 0) {
+        EXPECT_LT(u, high);
+      }
     }
   }
 }
@@ -180,7 +183,7 @@ TEST(SharedMath, DirectionSamplersAreUnitVectors) {
   SamplerFixture f(makeLineSpd(500.0));
   for (uint64_t i = 0; i < 100000; ++i) {
     const auto w = philoxWords(9, i, 0);
-    const float u = uniformFromWord(w[0]), v = uniformFromWord(w[1]);
+    const float u = uniformFloat(w[0]), v = uniformFloat(w[1]);
     for (auto d : {f.kernel.sampleSphere(u, v), f.kernel.sampleCosineHemisphere(u, v), f.kernel.sampleCone(u, v, 0.1f)}) {
       ASSERT_NEAR(glm::length(glm::dvec3(d)), 1.0, 1e-6);
     }

@@ -19,6 +19,22 @@ Buffer uploadedBuffer(const vk_util::Context& context, const std::vector<T>& dat
   return buffer;
 }
 
+std::vector<vk_util::BindingSpec> traceBindings() {
+  return {{device::kBindingTraceConstants}, {device::kBindingLights}, {device::kBindingSpectralIntervals},
+          {device::kBindingHistogram, device::kMaxHistogramChunks}, {device::kBindingBeamRecords}};
+}
+
+// 2D dispatch shape for `count` invocations: rows of at most the device's
+// group-count limit.
+struct DispatchShape {
+  uint32_t groupsX, groupsY, invocationsPerRow;
+};
+DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uint32_t workgroupSize) {
+  const uint64_t groups = (count + workgroupSize - 1) / workgroupSize;
+  const uint32_t groupsX = uint32_t(std::min<uint64_t>(groups, context.info().maxComputeWorkGroupCount[0]));
+  return {groupsX, uint32_t((groups + groupsX - 1) / groupsX), groupsX * workgroupSize};
+}
+
 }  // namespace
 
 HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t bins, uint64_t maxStorageBufferRange,
@@ -50,10 +66,9 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
       lights_(uploadedBuffer(context, plan.lights)),
       intervals_(uploadedBuffer(context, plan.intervals)),
+      unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
       tracePipeline_(context, embedded::spv_trace_beams(),
-                     {{device::kBindingTraceConstants}, {device::kBindingLights}, {device::kBindingSpectralIntervals},
-                      {device::kBindingHistogram, device::kMaxHistogramChunks}},
-                     sizeof(device::TracePush), {workgroupSize}),
+                     traceBindings(), sizeof(device::TracePush), {workgroupSize, 0u}),
       resolvePipeline_(context, embedded::spv_resolve(),
                        {{device::kBindingResolveConstants}, {device::kBindingBinWeights},
                         {device::kBindingResolvedPixels}, {device::kBindingResolveHistogram, device::kMaxHistogramChunks}},
@@ -69,6 +84,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
   tracePipeline_.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
   tracePipeline_.bindBuffer(device::kBindingLights, 0, lights_);
   tracePipeline_.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
+  tracePipeline_.bindBuffer(device::kBindingBeamRecords, 0, unusedBeamRecords_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c) {
@@ -91,17 +107,14 @@ uint64_t GpuTracer::maxBeamsPerDispatch() const {
 
 double GpuTracer::trace(uint64_t firstBeam, uint64_t beamCount) {
   double seconds = 0.0;
-  const uint32_t maxGroupsX = context_.info().maxComputeWorkGroupCount[0];
   while (beamCount > 0) {
     const uint64_t count = std::min(beamCount, maxBeamsPerDispatch());
-    const uint64_t groups = (count + workgroupSize_ - 1) / workgroupSize_;
-    const uint32_t groupsX = uint32_t(std::min<uint64_t>(groups, maxGroupsX));
-    const uint32_t groupsY = uint32_t((groups + groupsX - 1) / groupsX);
-    const device::TracePush push{firstBeam, uint32_t(count), groupsX * workgroupSize_};
+    const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
+    const device::TracePush push{firstBeam, uint32_t(count), shape.invocationsPerRow};
     context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
       timestamps_.reset(cb);
       timestamps_.write(cb, 0);
-      tracePipeline_.recordDispatch(cb, &push, groupsX, groupsY);
+      tracePipeline_.recordDispatch(cb, &push, shape.groupsX, shape.groupsY);
       timestamps_.write(cb, 1);
     });
     const auto ns = timestamps_.readNanoseconds();
@@ -110,6 +123,40 @@ double GpuTracer::trace(uint64_t firstBeam, uint64_t beamCount) {
     beamCount -= count;
   }
   return seconds;
+}
+
+std::vector<glm::uvec2> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
+  vk_util::ComputePipeline recorder(context_, embedded::spv_trace_beams(), traceBindings(), sizeof(device::TracePush),
+                                    {workgroupSize_, 1u});
+  Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(glm::uvec2), 16), {}, MemoryPlacement::HostVisible);
+  recorder.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
+  recorder.bindBuffer(device::kBindingLights, 0, lights_);
+  recorder.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
+  for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c)
+    recorder.bindBuffer(device::kBindingHistogram, c, histogramChunks_[c < split_.chunkCount ? c : 0]);
+  recorder.bindBuffer(device::kBindingBeamRecords, 0, records);
+  const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
+  const device::TracePush push{firstBeam, count, shape.invocationsPerRow};
+  context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) { recorder.recordDispatch(cb, &push, shape.groupsX, shape.groupsY); });
+  std::vector<glm::uvec2> result(count);
+  records.download(result.data(), uint64_t(count) * sizeof(glm::uvec2));
+  return result;
+}
+
+std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t seed, uint64_t firstIndex, uint32_t count,
+                                    uint32_t block) {
+  constexpr uint32_t kWorkgroup = 64;
+  vk_util::ComputePipeline pipeline(context, embedded::spv_rng_check(), {{device::kBindingRngWords}},
+                                    sizeof(device::RngCheckPush), {kWorkgroup});
+  Buffer words(context, std::max<uint64_t>(uint64_t(count) * sizeof(glm::uvec4), 16), {}, MemoryPlacement::HostVisible);
+  pipeline.bindBuffer(device::kBindingRngWords, 0, words);
+  const device::RngCheckPush push{seed, firstIndex, count, block};
+  context.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
+    pipeline.recordDispatch(cb, &push, (count + kWorkgroup - 1) / kWorkgroup);
+  });
+  std::vector<glm::uvec4> result(count);
+  words.download(result.data(), uint64_t(count) * sizeof(glm::uvec4));
+  return result;
 }
 
 SpectralHistogram GpuTracer::downloadHistogram() const {

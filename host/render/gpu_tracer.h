@@ -37,6 +37,10 @@ class GpuTracer {
   // Resolves on the device; `seconds` receives the device time if non-null.
   RenderImage resolve(const ResolveParameters& parameters, double* seconds = nullptr);
 
+  // Traces beams [firstBeam, firstBeam + count) without counting them and
+  // returns each beam's (pixel, bin), or kBeamMissed twice for a miss.
+  std::vector<glm::uvec2> traceRecorded(uint64_t firstBeam, uint32_t count);
+
   const HistogramSplit& split() const { return split_; }
   uint64_t maxBeamsPerDispatch() const;
 
@@ -48,10 +52,16 @@ class GpuTracer {
   vk_util::Buffer traceConstants_;
   vk_util::Buffer lights_;
   vk_util::Buffer intervals_;
+  vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
   std::vector<vk_util::Buffer> histogramChunks_;
   vk_util::ComputePipeline tracePipeline_;
   vk_util::ComputePipeline resolvePipeline_;
   vk_util::TimestampQueries timestamps_;
 };
+
+// Philox words for beams [firstIndex, firstIndex + count) of one block,
+// computed by the shader's Philox (to check it against the CPU's).
+std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t seed, uint64_t firstIndex,
+                                    uint32_t count, uint32_t block);
 
 }  // namespace spectrace

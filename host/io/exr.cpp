@@ -1,0 +1,190 @@
+// OpenEXR output and input of RenderImage (float32, lossless ZIP).
+#include <Iex.h>
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <cstdint>
+#include <exception>
+#include <string>
+
+#include "io/atomic_file.h"
+#include "io/image.h"
+
+namespace spectrace {
+namespace {
+
+struct ChannelSpec {
+  const char* name;
+  std::vector<float> RenderImage::*data;
+  int components;  // interleaved floats per pixel in that vector
+  int index;       // which of them
+};
+
+constexpr ChannelSpec kChannels[] = {
+    {"R", &RenderImage::rgb, 3, 0},          {"G", &RenderImage::rgb, 3, 1},
+    {"B", &RenderImage::rgb, 3, 2},          {"XYZ.X", &RenderImage::xyz, 3, 0},
+    {"XYZ.Y", &RenderImage::xyz, 3, 1},      {"XYZ.Z", &RenderImage::xyz, 3, 2},
+    {"irradiance.E", &RenderImage::irradiance, 1, 0},
+};
+
+// Imf::OStream over the temp file's descriptor. OpenEXR writes the line
+// offset table in ~OutputFile and swallows any error there, so the stream
+// remembers failures itself; otherwise a truncated file could be committed.
+class FdOStream final : public Imf::OStream {
+ public:
+  FdOStream(int fd, const std::string& name) : Imf::OStream(name.c_str()), fd_(fd) {}
+
+  void write(const char c[], int n) override {
+    if (n < 0) fail("negative write size");
+    if (const int err = io_detail::pwriteAll(fd_, c, static_cast<std::size_t>(n), pos_)) {
+      fail(io_detail::errnoText(err));
+    }
+    pos_ += static_cast<std::uint64_t>(n);
+  }
+  std::uint64_t tellp() override { return pos_; }
+  void seekp(std::uint64_t pos) override { pos_ = pos; }  // pwrite needs no lseek
+
+  const std::string& error() const { return error_; }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) {
+    if (error_.empty()) error_ = why;
+    throw Iex::IoExc(why);
+  }
+
+  int fd_;
+  std::uint64_t pos_ = 0;
+  std::string error_;
+};
+
+[[noreturn]] void readFail(const std::filesystem::path& path, const std::string& why) {
+  throw ImageIoError("cannot read EXR " + path.string() + ": " + why);
+}
+
+}  // namespace
+
+void writeExr(const std::filesystem::path& path, const RenderImage& image, const ImageMetadata& meta) {
+  const auto writeError = [&](const std::string& why) {
+    return ImageIoError("cannot write EXR " + path.string() + ": " + why);
+  };
+  // Validate before creating anything on disk.
+  if (image.width <= 0 || image.height <= 0) {
+    throw writeError("image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    " is not positive");
+  }
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  const auto checkSize = [&](const char* field, std::size_t actual, std::size_t perPixel) {
+    if (actual != pixels * perPixel) {
+      throw writeError(std::string(field) + " has " + std::to_string(actual) + " floats, expected " +
+                      std::to_string(pixels * perPixel) + " (" + std::to_string(image.width) + "x" +
+                      std::to_string(image.height) + "x" + std::to_string(perPixel) + ")");
+    }
+  };
+  checkSize("rgb", image.rgb.size(), 3);
+  checkSize("xyz", image.xyz.size(), 3);
+  checkSize("irradiance", image.irradiance.size(), 1);
+
+  try {
+    Imf::Header header(image.width, image.height);  // data window (0,0)..(w-1,h-1), INCREASING_Y
+    header.compression() = Imf::ZIP_COMPRESSION;    // lossless, so floats round-trip bit-exactly
+    // Reject user names that collide with standard attributes or with each
+    // other: Header::insert would either throw a cryptic type error or
+    // silently replace one value.
+    const auto addAttribute = [&](const std::string& name, const Imf::Attribute& attr) {
+      if (name.empty()) throw writeError("metadata attribute with an empty name");
+      if (header.find(name) != header.end()) {
+        throw writeError("metadata attribute \"" + name + "\" clashes with a standard or duplicate attribute");
+      }
+      header.insert(name, attr);
+    };
+    for (const auto& [name, value] : meta.strings) addAttribute(name, Imf::StringAttribute(value));
+    for (const auto& [name, value] : meta.numbers) addAttribute(name, Imf::DoubleAttribute(value));
+
+    Imf::FrameBuffer frame;
+    for (const ChannelSpec& ch : kChannels) {
+      header.channels().insert(ch.name, Imf::Channel(Imf::FLOAT));
+      // Slices take a non-const pointer for both directions; OutputFile only reads through it.
+      const std::vector<float>& data = image.*ch.data;
+      char* base = reinterpret_cast<char*>(const_cast<float*>(data.data() + ch.index));
+      const std::size_t xStride = sizeof(float) * static_cast<std::size_t>(ch.components);
+      frame.insert(ch.name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * static_cast<std::size_t>(image.width)));
+    }
+
+    // Only now touch the disk; an exception from here on removes the temp
+    // file (~AtomicFile) before it propagates.
+    io_detail::AtomicFile file(path, "EXR");
+    FdOStream stream(file.fd(), file.tempPath().string());
+    {
+      Imf::OutputFile out(stream, header);
+      out.setFrameBuffer(frame);
+      out.writePixels(image.height);
+    }  // ~OutputFile writes the offset table; failures are only visible via stream.error()
+    if (!stream.error().empty()) file.fail(stream.error());
+    file.commit();
+  } catch (const ImageIoError&) {
+    throw;
+  } catch (const std::exception& e) {  // Iex::BaseExc derives from std::exception
+    throw writeError(e.what());
+  }
+}
+
+ExrContents readExr(const std::filesystem::path& path) {
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const Imath::Box2i dw = header.dataWindow();
+    const std::int64_t width = std::int64_t{dw.max.x} - dw.min.x + 1;
+    const std::int64_t height = std::int64_t{dw.max.y} - dw.min.y + 1;
+    if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX) {
+      readFail(path, "invalid data window");
+    }
+    // OpenEXR would silently fill a missing channel with zeros; a render
+    // file without one is an error.
+    for (const ChannelSpec& ch : kChannels) {
+      if (!header.channels().findChannel(ch.name)) readFail(path, std::string("missing channel \"") + ch.name + "\"");
+    }
+
+    ExrContents result;
+    RenderImage& image = result.image;
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    image.rgb.resize(pixels * 3);
+    image.xyz.resize(pixels * 3);
+    image.irradiance.resize(pixels);
+
+    Imf::FrameBuffer frame;
+    for (const ChannelSpec& ch : kChannels) {
+      std::vector<float>& data = image.*ch.data;
+      // Slice::Make handles a data window not at the origin without
+      // out-of-range pointer arithmetic; stored HALF/UINT channels convert.
+      frame.insert(ch.name, Imf::Slice::Make(Imf::FLOAT, data.data() + ch.index, dw,
+                                             sizeof(float) * static_cast<std::size_t>(ch.components)));
+    }
+    in.setFrameBuffer(frame);
+    in.readPixels(dw.min.y, dw.max.y);
+
+    // Only string and double attributes are ours; standard ones (box,
+    // compression, channel list, ...) have other types and are skipped.
+    for (auto it = header.begin(); it != header.end(); ++it) {
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+        result.meta.strings.emplace(it.name(), s->value());
+      } else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute())) {
+        result.meta.numbers.emplace(it.name(), d->value());
+      }
+    }
+    return result;
+  } catch (const ImageIoError&) {
+    throw;
+  } catch (const std::exception& e) {  // Iex::BaseExc derives from std::exception
+    readFail(path, e.what());
+  }
+}
+
+}  // namespace spectrace

@@ -1,0 +1,106 @@
+// Analytic render: an isotropic point light of flux Phi over a bare sensor.
+// A pixel [x1,x2] x [y1,y2] in the sensor plane, seen from the light at
+// height d above (x0, y0), subtends the solid angle
+//   Omega = sum over corners of +-atan(a b / (d sqrt(a^2 + b^2 + d^2))),
+// (a, b the corner's offsets), so its mean irradiance is Phi Omega / (4 pi A)
+// exactly; at the pixel centre it tends to Phi d / (4 pi (r^2 + d^2)^(3/2)).
+// The count in a pixel is binomial(N, p = Omega / 4 pi), which gives each
+// pixel's Monte Carlo standard error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "camera/camera_frame.h"
+#include "render/gpu_tracer.h"
+#include "render/renderer.h"
+#include "support/statistics.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+double cornerTerm(double a, double b, double d) { return std::atan(a * b / (d * std::sqrt(a * a + b * b + d * d))); }
+
+// Solid angle of the rectangle [x1,x2] x [y1,y2] (z = 0) from (x0, y0, d).
+double rectangleSolidAngle(double x1, double x2, double y1, double y2, double x0, double y0, double d) {
+  return cornerTerm(x2 - x0, y2 - y0, d) - cornerTerm(x1 - x0, y2 - y0, d) - cornerTerm(x2 - x0, y1 - y0, d) +
+         cornerTerm(x1 - x0, y1 - y0, d);
+}
+
+void expectPointLightIrradiance(glm::dvec3 lightWorld, uint64_t beams, const char* name) {
+  constexpr double kPower = 3.0;
+  Scene scene = testing::bareSensorScene(0.036, 0.024, 48, 32, 16);
+  // A Dirac line keeps the whole flux inside the spectrum range.
+  scene.lights = {testing::pointLight(lightWorld, kPower, makeLineSpd(550.0))};
+  RenderOptions options;
+  options.beams = beams;
+  options.seed = 2024;
+  options.device = DeviceChoice::Gpu;
+  const RenderResult result = render(scene, options);
+  ASSERT_EQ(result.deviceKind, "gpu");
+
+  const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
+  const glm::dvec3 light = frame.pointToLocal(lightWorld);
+  const double pw = scene.camera.sensorWidthM / scene.camera.pixelsX;
+  const double ph = scene.camera.sensorHeightM / scene.camera.pixelsY;
+  const double area = pw * ph;
+  double chi2 = 0.0, worstSigmas = 0.0, meanRelError = 0.0;
+  int pixels = 0;
+  for (int row = 0; row < scene.camera.pixelsY; ++row) {
+    for (int col = 0; col < scene.camera.pixelsX; ++col) {
+      // Columns run along camera right, rows down from camera up.
+      const double x1 = -0.5 * scene.camera.sensorWidthM + col * pw;
+      const double y2 = 0.5 * scene.camera.sensorHeightM - row * ph;
+      const double omega = rectangleSolidAngle(x1, x1 + pw, y2 - ph, y2, light.x, light.y, light.z);
+      const double p = omega / (4.0 * M_PI);
+      const double expected = kPower * omega / (4.0 * M_PI * area);
+      const double sigma = kPower / (double(beams) * area) * std::sqrt(double(beams) * p * (1.0 - p));
+      const double measured = result.image.irradiance[size_t(row) * scene.camera.pixelsX + col];
+      const double z = (measured - expected) / sigma;
+      chi2 += z * z;
+      worstSigmas = std::max(worstSigmas, std::abs(z));
+      meanRelError += std::abs(measured - expected) / expected;
+      ++pixels;
+      // 5 sigma per pixel: a correct renderer fails one of 1536 pixels with
+      // probability ~1e-3.
+      EXPECT_LE(std::abs(z), 5.0) << name << " pixel (" << col << ", " << row << ") measured " << measured
+                                  << " W/m^2, expected " << expected << " +- " << sigma;
+    }
+  }
+  boost::math::chi_squared dist(pixels);
+  const double pValue = boost::math::cdf(boost::math::complement(dist, chi2));
+  std::printf("%s: %d pixels, chi2 = %.1f (p = %.3f), worst %.2f sigma, mean |rel. error| %.4f\n", name, pixels, chi2,
+              pValue, worstSigmas, meanRelError / pixels);
+  // Global test of all pixels together (p > 0.01 for this fixed seed).
+  EXPECT_GT(pValue, 0.01);
+}
+
+TEST(AnalyticRender, PointLightOnTheAxisOfABareSensor) {
+  expectPointLightIrradiance({0.0, 0.0, 0.01}, 16'000'000, "on axis");
+}
+
+TEST(AnalyticRender, PointLightOffAxis) {
+  expectPointLightIrradiance({0.01, -0.004, 0.015}, 16'000'000, "off axis");
+}
+
+TEST(AnalyticRender, CpuReferenceToo) {
+  // The same physics on the CPU path, through the CPU resolve.
+  constexpr double kPower = 1.0, kDistance = 0.01;
+  Scene scene = testing::bareSensorScene(0.02, 0.02, 8, 8, 4);
+  scene.lights = {testing::pointLight({0.0, 0.0, kDistance}, kPower, makeLineSpd(600.0))};
+  RenderOptions options;
+  options.beams = 4'000'000;
+  options.device = DeviceChoice::Cpu;
+  const RenderResult result = render(scene, options);
+  double measured = 0.0;
+  for (float e : result.image.irradiance) measured += e;
+  measured *= 0.0025 * 0.0025;  // flux onto the sensor
+  const double omega = rectangleSolidAngle(-0.01, 0.01, -0.01, 0.01, 0.0, 0.0, kDistance);
+  const double p = omega / (4.0 * M_PI);
+  const double sigma = kPower * std::sqrt(p * (1.0 - p) / double(options.beams));
+  EXPECT_NEAR(measured, kPower * p, 5.0 * sigma);
+}
+
+}  // namespace
+}  // namespace spectrace

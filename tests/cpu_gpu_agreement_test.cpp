@@ -1,0 +1,129 @@
+// The CPU reference and the Vulkan path draw the same beams: compare them
+// beam by beam (every light type, bare sensor and pinhole) and as
+// histograms.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "cpu/beam_kernel.h"
+#include "cpu/reference_tracer.h"
+#include "lights/trace_plan.h"
+#include "render/gpu_tracer.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+using testing::pointLight;
+using testing::surfaceLight;
+
+// Every light type at once, near a small sensor so that many beams hit.
+Scene mixedScene(bool pinhole) {
+  Scene scene = testing::bareSensorScene(0.036, 0.024, 72, 48, 94);
+  Light spot = pointLight({0.004, 0.002, 0.08}, 2.0, *cieIlluminant("A"));
+  spot.type = LightType::Spot;
+  spot.direction = glm::normalize(glm::dvec3(-0.05, 0.0, -1.0));
+  spot.coneHalfAngleDeg = 12.0;
+  Light disk = surfaceLight(LightType::Disk, {-0.01, 0.0, 0.03}, {0, 0, -1}, 3.0, makeBlackbodySpd(2700, 360, 830));
+  disk.radiusM = 0.01;
+  Light rect = surfaceLight(LightType::Rect, {0.01, -0.005, 0.02}, glm::normalize(glm::dvec3(0.2, 0.1, -1)), 3.0,
+                            *cieIlluminant("F11"));
+  rect.sizeM = {0.02, 0.01};
+  rect.uAxis = {1, 0, 0};
+  Light laser = surfaceLight(LightType::Laser, {0.005, 0.005, 0.1}, {0, 0, -1}, 0.01, makeLineSpd(532.0));
+  laser.radiusM = 0.002;
+  scene.lights = {pointLight({0.0, 0.0, 0.02}, 1.0, *cieIlluminant("D65")), spot, disk, rect, laser};
+  if (pinhole) {
+    scene.camera.pinhole = Pinhole{0.01, 0.002};
+    for (auto& l : scene.lights) l.position.z += 0.02;
+  }
+  return scene;
+}
+
+void compareBeamByBeam(const Scene& scene, uint64_t firstBeam, uint32_t count, const char* name, uint64_t minHits) {
+  const TracePlan plan = buildTracePlan(scene, 12345);
+  GpuTracer gpu(testing::sharedVulkan(), plan);
+  const auto records = gpu.traceRecorded(firstBeam, count);
+  device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
+  uint64_t hits = 0, same = 0, differ = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t pixel, bin;
+    const bool hit = cpu.trace(firstBeam + i, pixel, bin);
+    const bool gpuHit = records[i].x != device::kBeamMissed;
+    hits += hit;
+    if (hit == gpuHit && (!hit || (records[i].x == pixel && records[i].y == bin))) {
+      ++same;
+    } else if (++differ <= 10) {
+      std::printf("  %s: beam %llu differs: cpu %s (pixel %u, bin %u), gpu (pixel %u, bin %u)\n", name,
+                  (unsigned long long)(firstBeam + i), hit ? "hit" : "miss", hit ? pixel : 0, hit ? bin : 0,
+                  records[i].x, records[i].y);
+    }
+  }
+  const double rate = double(same) / double(count);
+  std::printf("%s: %llu of %u beams identical (%.6f%%), %llu hits, %llu differ\n", name, (unsigned long long)same, count,
+              100.0 * rate, (unsigned long long)hits, (unsigned long long)differ);
+  ::testing::Test::RecordProperty(std::string(name) + "_agreement", std::to_string(rate));
+  EXPECT_GT(hits, minHits) << "the scene should put many beams on the sensor";
+  // The requirement is 99.99%; the shared code and NoContraction aim at 100%.
+  EXPECT_GE(rate, 0.9999);
+}
+
+TEST(CpuGpuAgreement, BareSensorEveryLightTypeBeamByBeam) {
+  compareBeamByBeam(mixedScene(false), 0, 2'000'000, "bare", 100'000);
+}
+
+TEST(CpuGpuAgreement, PinholeEveryLightTypeBeamByBeam) {
+  compareBeamByBeam(mixedScene(true), 0, 2'000'000, "pinhole", 5'000);
+}
+
+TEST(CpuGpuAgreement, BeamIndicesNear2To32And2To40) {
+  compareBeamByBeam(mixedScene(false), (1ull << 32) - 500'000, 1'000'000, "near 2^32", 50'000);
+  compareBeamByBeam(mixedScene(false), (1ull << 40) + 3, 500'000, "past 2^40", 25'000);
+}
+
+TEST(CpuGpuAgreement, HistogramsOfARenderAgree) {
+  const Scene scene = mixedScene(false);
+  const TracePlan plan = buildTracePlan(scene, 777);
+  GpuTracer gpu(testing::sharedVulkan(), plan);
+  gpu.trace(0, 3'000'000);
+  const SpectralHistogram fromGpu = gpu.downloadHistogram();
+  SpectralHistogram fromCpu;
+  traceOnCpu(plan, 0, 3'000'000, fromCpu);
+  uint64_t absDiff = 0;
+  for (size_t i = 0; i < fromCpu.counts.size(); ++i)
+    absDiff += fromCpu.counts[i] > fromGpu.counts[i] ? fromCpu.counts[i] - fromGpu.counts[i] : fromGpu.counts[i] - fromCpu.counts[i];
+  const double moved = 0.5 * double(absDiff) / double(fromCpu.total());
+  std::printf("histograms: %llu hits on the CPU, %llu on the GPU, %.6f%% of counts in different cells\n",
+              (unsigned long long)fromCpu.total(), (unsigned long long)fromGpu.total(), 100.0 * moved);
+  EXPECT_LE(moved, 1e-4);
+}
+
+TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {
+  // A 512x512x64 histogram is 128 MiB: lavapipe must split it (its
+  // maxStorageBufferRange is 128 MiB minus nothing, so test the split rule
+  // directly and with a small forced limit through the public split rule).
+  const auto split = HistogramSplit::forDevice(512 * 512, 64, 128ull << 20, 2ull << 30);
+  EXPECT_EQ(split.chunkCount, 1u);
+  const auto bigger = HistogramSplit::forDevice(600 * 600, 64, 128ull << 20, 2ull << 30);
+  EXPECT_EQ(bigger.chunkCount, 2u);
+  EXPECT_EQ(bigger.pixelsPerChunk, (128u << 20) / (64 * 8));
+  EXPECT_THROW(HistogramSplit::forDevice(8192ull * 8192, 471, 128ull << 20, 2ull << 30), vk_util::VulkanError);
+
+  // A real render whose histogram spans two chunks equals the CPU's.
+  Scene scene = testing::bareSensorScene(0.1, 0.1, 600, 600, 64);
+  scene.lights = {pointLight({0.0, 0.0, 0.05}, 1.0, *cieIlluminant("D65"))};
+  const TracePlan plan = buildTracePlan(scene, 3);
+  GpuTracer gpu(testing::sharedVulkan(), plan);
+  ASSERT_EQ(gpu.split().chunkCount, 2u);
+  gpu.trace(0, 2'000'000);
+  const SpectralHistogram fromGpu = gpu.downloadHistogram();
+  SpectralHistogram fromCpu;
+  traceOnCpu(plan, 0, 2'000'000, fromCpu);
+  uint64_t differing = 0;
+  for (size_t i = 0; i < fromCpu.counts.size(); ++i) differing += fromCpu.counts[i] != fromGpu.counts[i];
+  EXPECT_GT(fromCpu.total(), 100'000u);
+  EXPECT_LE(differing, fromCpu.total() / 10'000);
+}
+
+}  // namespace
+}  // namespace spectrace
