@@ -1,0 +1,194 @@
+#include "vulkan/compute_pipeline.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace spectrace::vk_util {
+namespace {
+
+constexpr uint32_t kSpirvMagic = 0x07230203;
+
+std::string declaredBindings(const std::vector<BindingSpec>& bindings) {
+  std::string out;
+  for (const auto& b : bindings)
+    out += fmt::format("{}{}{}", out.empty() ? "" : ", ", b.binding, b.count > 1 ? fmt::format("[{}]", b.count) : "");
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigned char> spirv,
+                                 std::vector<BindingSpec> bindings, uint32_t pushConstantBytes,
+                                 std::vector<uint32_t> specConstants)
+    : context_(&context), bindings_(std::move(bindings)), pushConstantBytes_(pushConstantBytes) {
+  const DeviceInfo& info = context.info();
+  if (spirv.empty() || spirv.size() % 4 != 0)
+    throw VulkanError(fmt::format("ComputePipeline: SPIR-V must be a non-empty whole number of 4-byte words, got {} bytes",
+                                  spirv.size()));
+  // Copied so that the words are aligned whatever the caller's bytes are.
+  std::vector<uint32_t> words(spirv.size() / 4);
+  std::memcpy(words.data(), spirv.data(), spirv.size());
+  if (words[0] != kSpirvMagic)
+    throw VulkanError(fmt::format("ComputePipeline: the code does not start with the SPIR-V magic number 0x{:08x} "
+                                  "(found 0x{:08x})",
+                                  kSpirvMagic, words[0]));
+
+  uint32_t totalDescriptors = 0;
+  std::vector<vk::DescriptorSetLayoutBinding> layoutBindings;
+  for (size_t i = 0; i < bindings_.size(); ++i) {
+    const BindingSpec& b = bindings_[i];
+    if (b.count == 0) throw VulkanError(fmt::format("ComputePipeline: binding {} has a count of 0", b.binding));
+    for (size_t j = 0; j < i; ++j)
+      if (bindings_[j].binding == b.binding)
+        throw VulkanError(fmt::format("ComputePipeline: binding {} is declared twice", b.binding));
+    totalDescriptors += b.count;
+    layoutBindings.push_back(vk::DescriptorSetLayoutBinding{.binding = b.binding,
+                                                            .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                            .descriptorCount = b.count,
+                                                            .stageFlags = vk::ShaderStageFlagBits::eCompute});
+    bound_.emplace_back(b.count, false);
+  }
+  if (totalDescriptors > info.maxPerStageDescriptorStorageBuffers)
+    throw VulkanError(fmt::format("ComputePipeline: {} storage buffer descriptors exceed the "
+                                  "maxPerStageDescriptorStorageBuffers ({}) of Vulkan device '{}'",
+                                  totalDescriptors, info.maxPerStageDescriptorStorageBuffers, info.name));
+  if (pushConstantBytes % 4 != 0 || pushConstantBytes > info.maxPushConstantsSize)
+    throw VulkanError(fmt::format("ComputePipeline: {} bytes of push constants; they must be a multiple of 4 and at "
+                                  "most the maxPushConstantsSize ({}) of Vulkan device '{}'",
+                                  pushConstantBytes, info.maxPushConstantsSize, info.name));
+
+  const vk::raii::Device& device = context.device();
+  try {
+    setLayout_ = vk::raii::DescriptorSetLayout(
+        device, vk::DescriptorSetLayoutCreateInfo{.bindingCount = uint32_t(layoutBindings.size()),
+                                                  .pBindings = layoutBindings.data()});
+    const vk::PushConstantRange pushRange{
+        .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = pushConstantBytes};
+    const vk::DescriptorSetLayout rawSetLayout = *setLayout_;
+    pipelineLayout_ = vk::raii::PipelineLayout(
+        device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
+                                             .pSetLayouts = &rawSetLayout,
+                                             .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
+                                             .pPushConstantRanges = &pushRange});
+  } catch (const vk::SystemError& e) {
+    throw VulkanError(fmt::format("ComputePipeline: creating the pipeline layout failed: {}", e.what()));
+  }
+
+  std::vector<vk::SpecializationMapEntry> specEntries;
+  for (uint32_t i = 0; i < specConstants.size(); ++i)
+    specEntries.push_back(vk::SpecializationMapEntry{.constantID = i, .offset = 4 * i, .size = 4});
+  const vk::SpecializationInfo specInfo{.mapEntryCount = uint32_t(specEntries.size()),
+                                        .pMapEntries = specEntries.data(),
+                                        .dataSize = specConstants.size() * 4,
+                                        .pData = specConstants.data()};
+  try {
+    vk::raii::ShaderModule module(
+        device, vk::ShaderModuleCreateInfo{.codeSize = words.size() * 4, .pCode = words.data()});
+    pipeline_ = vk::raii::Pipeline(
+        device, nullptr,
+        vk::ComputePipelineCreateInfo{
+            .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
+                      .module = *module,
+                      .pName = "main",
+                      .pSpecializationInfo = specConstants.empty() ? nullptr : &specInfo},
+            .layout = *pipelineLayout_});
+  } catch (const vk::SystemError& e) {
+    throw VulkanError(fmt::format("ComputePipeline: creating the compute pipeline on '{}' failed: {}", info.name,
+                                  e.what()));
+  }
+
+  if (totalDescriptors > 0) {
+    try {
+      const vk::DescriptorPoolSize poolSize{.type = vk::DescriptorType::eStorageBuffer,
+                                            .descriptorCount = totalDescriptors};
+      // FreeDescriptorSet: the RAII set frees itself before the pool goes.
+      pool_ = vk::raii::DescriptorPool(
+          device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                               .maxSets = 1,
+                                               .poolSizeCount = 1,
+                                               .pPoolSizes = &poolSize});
+      const vk::DescriptorSetLayout rawSetLayout = *setLayout_;
+      vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
+                                                                           .descriptorSetCount = 1,
+                                                                           .pSetLayouts = &rawSetLayout});
+      set_ = std::move(sets.front());
+    } catch (const vk::SystemError& e) {
+      throw VulkanError(fmt::format("ComputePipeline: allocating the descriptor set failed: {}", e.what()));
+    }
+  }
+}
+
+void ComputePipeline::bindBuffer(uint32_t binding, uint32_t arrayElement, const Buffer& buffer, vk::DeviceSize offset,
+                                 vk::DeviceSize range) {
+  const auto it = std::find_if(bindings_.begin(), bindings_.end(),
+                               [&](const BindingSpec& b) { return b.binding == binding; });
+  if (it == bindings_.end())
+    throw VulkanError(fmt::format("ComputePipeline::bindBuffer: binding {} is not declared (declared: {})", binding,
+                                  declaredBindings(bindings_)));
+  const std::string where = fmt::format("ComputePipeline::bindBuffer: binding {} element {}", binding, arrayElement);
+  if (arrayElement >= it->count)
+    throw VulkanError(fmt::format("{} is out of range: the binding has {} element{}", where, it->count,
+                                  it->count == 1 ? "" : "s"));
+  if (!buffer.handle()) throw VulkanError(where + ": the buffer is empty (moved from)");
+  const DeviceInfo& info = context_->info();
+  if (offset >= buffer.size())
+    throw VulkanError(fmt::format("{}: offset {} is at or past the end of the {}-byte buffer", where, offset,
+                                  buffer.size()));
+  if (offset % info.minStorageBufferOffsetAlignment != 0)
+    throw VulkanError(fmt::format("{}: offset {} is not a multiple of the minStorageBufferOffsetAlignment ({}) of "
+                                  "Vulkan device '{}'",
+                                  where, offset, info.minStorageBufferOffsetAlignment, info.name));
+  if (range != VK_WHOLE_SIZE && (range == 0 || range > buffer.size() - offset))
+    throw VulkanError(fmt::format("{}: range {} at offset {} does not fit in the {}-byte buffer", where, range, offset,
+                                  buffer.size()));
+  const vk::DeviceSize effective = range == VK_WHOLE_SIZE ? buffer.size() - offset : range;
+  if (effective > info.maxStorageBufferRange)
+    throw VulkanError(fmt::format("{}: a range of {} bytes exceeds the maxStorageBufferRange ({} bytes) of Vulkan "
+                                  "device '{}'; split the buffer across array elements or dispatches",
+                                  where, effective, info.maxStorageBufferRange, info.name));
+
+  // The explicit range (never VK_WHOLE_SIZE) keeps the shader's view to the
+  // requested bytes, not the buffer's rounded-up allocation.
+  const vk::DescriptorBufferInfo bufferInfo{.buffer = buffer.handle(), .offset = offset, .range = effective};
+  context_->device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set_,
+                                                                 .dstBinding = binding,
+                                                                 .dstArrayElement = arrayElement,
+                                                                 .descriptorCount = 1,
+                                                                 .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                                 .pBufferInfo = &bufferInfo},
+                                          nullptr);
+  bound_[size_t(it - bindings_.begin())][arrayElement] = true;
+}
+
+void ComputePipeline::recordDispatch(const vk::raii::CommandBuffer& cmd, const void* pushConstants, uint32_t groupsX,
+                                     uint32_t groupsY, uint32_t groupsZ) const {
+  const DeviceInfo& info = context_->info();
+  const auto& limit = info.maxComputeWorkGroupCount;
+  if (groupsX > limit[0] || groupsY > limit[1] || groupsZ > limit[2])
+    throw VulkanError(fmt::format("ComputePipeline::recordDispatch: {} x {} x {} workgroups exceed the "
+                                  "maxComputeWorkGroupCount ({} x {} x {}) of Vulkan device '{}'",
+                                  groupsX, groupsY, groupsZ, limit[0], limit[1], limit[2], info.name));
+  for (size_t i = 0; i < bindings_.size(); ++i)
+    for (size_t e = 0; e < bound_[i].size(); ++e)
+      if (!bound_[i][e])
+        throw VulkanError(fmt::format("ComputePipeline::recordDispatch: binding {} element {} has no buffer bound",
+                                      bindings_[i].binding, e));
+  if (pushConstantBytes_ > 0 && !pushConstants)
+    throw VulkanError(fmt::format("ComputePipeline::recordDispatch: the pipeline takes {} bytes of push constants, "
+                                  "but none were given",
+                                  pushConstantBytes_));
+  if (pushConstantBytes_ == 0 && pushConstants)
+    throw VulkanError("ComputePipeline::recordDispatch: push constants were given, but the pipeline declares none");
+
+  cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
+  if (*set_) cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0, *set_, nullptr);
+  if (pushConstantBytes_ > 0)
+    cmd.pushConstants<unsigned char>(
+        *pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
+        vk::ArrayProxy<const unsigned char>(pushConstantBytes_, static_cast<const unsigned char*>(pushConstants)));
+  cmd.dispatch(groupsX, groupsY, groupsZ);
+}
+
+}  // namespace spectrace::vk_util

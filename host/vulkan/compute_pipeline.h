@@ -1,0 +1,64 @@
+#pragma once
+// A compute shader with its descriptor set (storage buffers only), push
+// constants and specialisation constants. Borrows its Context, which must
+// outlive it.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan_raii.hpp>
+
+#include "vulkan/buffer.h"
+#include "vulkan/context.h"
+
+namespace spectrace::vk_util {
+
+struct BindingSpec {
+  uint32_t binding;
+  // > 1: an array of storage buffers, e.g. a histogram split under
+  // maxStorageBufferRange. Shaders must index such arrays with dynamically
+  // uniform values: lavapipe has no non-uniform descriptor indexing.
+  uint32_t count = 1;
+};
+
+class ComputePipeline {
+ public:
+  // spirv: SPIR-V bytes (a whole number of 4-byte words, entry point "main").
+  // specConstants[i] -> constant_id i (uint32). Creates its own descriptor
+  // pool and set. VulkanError on malformed SPIR-V, bindings the device cannot
+  // hold, push constants over maxPushConstantsSize, or pipeline creation
+  // failure.
+  ComputePipeline(const Context&, std::span<const unsigned char> spirv, std::vector<BindingSpec> bindings,
+                  uint32_t pushConstantBytes, std::vector<uint32_t> specConstants = {});
+
+  // Points element `arrayElement` of `binding` at [offset, offset + range) of
+  // `buffer` (VK_WHOLE_SIZE: to the end). Refuses ranges larger than the
+  // device's maxStorageBufferRange (callers split big buffers), offsets not
+  // aligned to minStorageBufferOffsetAlignment, and unknown bindings.
+  // The update is immediate: do not rebind while a command buffer that
+  // dispatches this pipeline is being recorded or executed.
+  void bindBuffer(uint32_t binding, uint32_t arrayElement, const Buffer& buffer, vk::DeviceSize offset = 0,
+                  vk::DeviceSize range = VK_WHOLE_SIZE);
+
+  // Binds pipeline + set, pushes `pushConstants` (pushConstantBytes of them,
+  // if any) and dispatches. VulkanError if a group count exceeds the device's
+  // maxComputeWorkGroupCount or a descriptor was never bound.
+  void recordDispatch(const vk::raii::CommandBuffer&, const void* pushConstants, uint32_t groupsX,
+                      uint32_t groupsY = 1, uint32_t groupsZ = 1) const;
+
+  uint32_t pushConstantBytes() const { return pushConstantBytes_; }
+
+ private:
+  const Context* context_;
+  std::vector<BindingSpec> bindings_;
+  std::vector<std::vector<bool>> bound_;  // per binding spec, per array element
+  uint32_t pushConstantBytes_;
+  // Destroyed in reverse: set before pool, pipeline before its layouts.
+  vk::raii::DescriptorSetLayout setLayout_{nullptr};
+  vk::raii::PipelineLayout pipelineLayout_{nullptr};
+  vk::raii::Pipeline pipeline_{nullptr};
+  vk::raii::DescriptorPool pool_{nullptr};
+  vk::raii::DescriptorSet set_{nullptr};
+};
+
+}  // namespace spectrace::vk_util

@@ -1,0 +1,100 @@
+// Whole renders through the library: device choice, interruption and
+// checkpoints (no finished work is lost), and results that do not depend on
+// batch size, workgroup size, thread count or how the beams are split.
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include "cpu/reference_tracer.h"
+#include "render/renderer.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+Scene smallScene() {
+  Scene scene = testing::bareSensorScene(0.02, 0.02, 40, 30, 24);
+  Light disk = testing::surfaceLight(LightType::Disk, {0.002, 0.0, 0.01}, {0, 0, -1}, 2.0, *cieIlluminant("D65"));
+  disk.radiusM = 0.004;
+  scene.lights = {disk, testing::pointLight({-0.005, 0.003, 0.004}, 0.5, makeBlackbodySpd(3000, 360, 830))};
+  return scene;
+}
+
+RenderResult renderWith(DeviceChoice device, uint64_t beams, uint64_t batch, uint32_t workgroup = 64,
+                        unsigned threads = 0, uint64_t first = 0) {
+  RenderOptions options;
+  options.beams = beams;
+  options.firstBeam = first;
+  options.seed = 99;
+  options.device = device;
+  options.batchBeams = batch;
+  options.workgroupSize = workgroup;
+  options.cpuThreads = threads;
+  return render(smallScene(), options);
+}
+
+TEST(Render, AutoPicksTheVulkanDeviceWhenThereIsOne) {
+  RenderOptions options;
+  options.beams = 1000;
+  std::string logged;
+  options.log = [&](const std::string& line) { logged += line + "\n"; };
+  const RenderResult result = render(smallScene(), options);
+  EXPECT_EQ(result.deviceKind, "gpu");  // lavapipe counts: it is a Vulkan device
+  EXPECT_NE(logged.find(result.deviceName), std::string::npos) << "auto must say which device it picked";
+}
+
+TEST(Render, CancelledRenderKeepsExactlyTheFinishedBeams) {
+  for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
+    std::atomic<bool> cancel{false};
+    RenderOptions options;
+    options.beams = 4'000'000;
+    options.seed = 99;
+    options.device = device;
+    options.batchBeams = 1'000'000;
+    options.cancel = &cancel;
+    options.onProgress = [&](uint64_t done, uint64_t) { cancel.store(done >= 2'000'000); };
+    const RenderResult partial = render(smallScene(), options);
+    EXPECT_EQ(partial.beamsTraced, 2'000'000u);
+    // The partial histogram is exactly that of beams [0, 2e6), and the image
+    // is normalised by the beams actually traced.
+    SpectralHistogram reference;
+    traceOnCpu(partial.plan, 0, partial.beamsTraced, reference);
+    EXPECT_EQ(partial.histogram.counts, reference.counts);
+    const double perCount = partial.plan.irradiancePerCount(partial.beamsTraced);
+    uint64_t pixelCount = 0;
+    for (uint32_t b = 0; b < partial.histogram.bins; ++b) pixelCount += partial.histogram.at(0, b);
+    EXPECT_NEAR(partial.image.irradiance[0], double(pixelCount) * perCount, 1e-6 * double(pixelCount) * perCount + 1e-30);
+  }
+}
+
+TEST(Render, CheckpointsCarryTheFinishedBeams) {
+  RenderOptions options;
+  options.beams = 3'000'000;
+  options.device = DeviceChoice::Gpu;
+  options.batchBeams = 1'000'000;
+  options.checkpointSeconds = 1e-9;  // after every batch but the last
+  std::vector<uint64_t> checkpoints;
+  options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
+    EXPECT_EQ(image.irradiance.size(), 40u * 30u);
+    EXPECT_FALSE(device.empty());
+    checkpoints.push_back(done);
+  };
+  render(smallScene(), options);
+  EXPECT_EQ(checkpoints, (std::vector<uint64_t>{1'000'000, 2'000'000}));
+}
+
+TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
+  const auto reference = renderWith(DeviceChoice::Gpu, 3'000'000, 3'000'000).histogram.counts;
+  EXPECT_EQ(renderWith(DeviceChoice::Gpu, 3'000'000, 700'001).histogram.counts, reference);
+  EXPECT_EQ(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 256).histogram.counts, reference);
+  EXPECT_EQ(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 32).histogram.counts, reference);
+  EXPECT_EQ(renderWith(DeviceChoice::Cpu, 3'000'000, 0, 64, 1).histogram.counts, reference);
+  EXPECT_EQ(renderWith(DeviceChoice::Cpu, 3'000'000, 1'234'567, 64, 2).histogram.counts, reference);
+  // Two renders over disjoint beam ranges merge into the whole.
+  auto first = renderWith(DeviceChoice::Gpu, 1'000'000, 0);
+  first.histogram.merge(renderWith(DeviceChoice::Cpu, 2'000'000, 0, 64, 0, 1'000'000).histogram);
+  EXPECT_EQ(first.histogram.counts, reference);
+}
+
+}  // namespace
+}  // namespace spectrace
