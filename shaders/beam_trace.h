@@ -21,24 +21,26 @@ FN float drawWavelength(uint spectralFirst, uint spectralCount, uint64_t interva
 // and wavelength bin. Every random number comes from (seed, beamIndex,
 // block), so the result is independent of batching, threads and device.
 FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin) {
-  uvec4 select = philox4x32(constants.seed, beamIndex, kRngBlockSelect);
+  uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
-  uvec4 extra = philox4x32(constants.seed, beamIndex, kRngBlockExtra);
 
   // Light in proportion to its traced power, then interval in proportion to
   // its power: both exact integer CDFs over 64-bit uniforms.
-  uint lightIndex = constants.lightCount > 1u
-      ? searchLight(0u, constants.lightCount, joinWords(select.x, select.y)) : 0u;
+  uint lightIndex = 0u;
+  if (constants.lightCount > 1u) {
+    uvec4 select = philox4x32(constants.seed, beamIndex, kRngBlockLight);
+    lightIndex = searchLight(0u, constants.lightCount, joinWords(select.x, select.y));
+  }
   LightRecord light = readLight(lightIndex);
-  float lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(select.z, select.w),
-                                uniformFromWord(geometry.x));
+  float lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(spectral.x, spectral.y),
+                                uniformFromWord(spectral.z));
   bin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.bins);
 
   vec3 origin;
   vec3 direction;
   emitBeam(light.type, light.position, light.axis, light.tangent, light.bitangent, light.param0,
-           light.param1, uniformFromWord(geometry.y), uniformFromWord(geometry.z),
-           uniformFromWord(geometry.w), uniformFromWord(extra.x), origin, direction);
+           light.param1, uniformFromWord(spectral.w), uniformFromWord(geometry.x),
+           uniformFromWord(geometry.y), uniformFromWord(geometry.z), origin, direction);
   return hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
                    constants.pixelsX, constants.pixelsY, constants.apertureDistance,
                    constants.apertureRadiusSq, pixel);

@@ -51,10 +51,11 @@ SPECTRACE_CONSTANT uint kLightDisk = 2;
 SPECTRACE_CONSTANT uint kLightRect = 3;
 SPECTRACE_CONSTANT uint kLightLaser = 4;
 
-// Philox counter blocks: each gives four 32-bit words per beam.
-SPECTRACE_CONSTANT uint kRngBlockSelect = 0;    // light (64 bit), spectral interval (64 bit)
-SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;  // lambda-in-interval, origin u, origin v, direction u
-SPECTRACE_CONSTANT uint kRngBlockExtra = 2;     // direction v
+// Philox counter blocks: each gives four 32-bit words per beam. Light choice
+// has its own block, so single-light scenes draw two blocks, not three.
+SPECTRACE_CONSTANT uint kRngBlockSpectral = 0;   // interval (64 bit), position in interval, origin u
+SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;   // origin v, direction u, direction v, (spare)
+SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (spare)
 
 // One light, in the camera frame (metres, single precision). Built on the
 // host from the scene in double precision.

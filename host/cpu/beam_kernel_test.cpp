@@ -31,9 +31,8 @@ struct SamplerFixture {
     lights[0].spectralCount = uint32_t(table.intervals.size());
   }
   float draw(uint64_t seed, uint64_t i) const {
-    const auto w = philoxWords(seed, i, device::kRngBlockSelect);
-    const auto g = philoxWords(seed, i, device::kRngBlockGeometry);
-    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[2], w[3]), uniformFloat(g[0]));
+    const auto w = philoxWords(seed, i, device::kRngBlockSpectral);
+    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[0], w[1]), uniformFloat(w[2]));
   }
 };
 

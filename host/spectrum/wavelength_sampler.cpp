@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 namespace spectrace {
@@ -62,10 +63,25 @@ SpectralTable buildSpectralTable(const Spd& spd) {
     table.integral = spd.value[0];
     return table;
   }
+  // Weights are formed from values scaled by 1/max, so neither huge values
+  // (1e306 over a wide range) overflow nor subnormal ones underflow to a
+  // zero weight; only the shares matter.
+  double peak = 0.0;
+  for (double v : spd.value) peak = std::max(peak, v);
+  if (!(peak > 0.0) || !std::isfinite(peak)) throw SpdError("the spectrum has no finite power inside the spectrum range");
+  const double scale = 1.0 / peak;
+  auto value = [&](size_t j) { return spd.value[j] * scale; };
+  // An interval of positive power keeps a positive weight even if it
+  // underflows (a subnormal next to a large peak): it must stay drawable.
+  auto intervalWeight = [&](size_t j) {
+    if (!(spd.value[j] > 0.0 || spd.value[j + 1] > 0.0)) return 0.0;
+    const double w = 0.5 * (value(j) + value(j + 1)) * (spd.lambdaNm[j + 1] - spd.lambdaNm[j]);
+    return std::max(w, std::numeric_limits<double>::denorm_min());
+  };
   std::vector<double> weights;
   size_t first = spd.lambdaNm.size(), last = 0;
   for (size_t j = 0; j + 1 < spd.lambdaNm.size(); ++j) {
-    const double w = 0.5 * (spd.value[j] + spd.value[j + 1]) * (spd.lambdaNm[j + 1] - spd.lambdaNm[j]);
+    const double w = intervalWeight(j);
     if (w > 0.0) {
       first = std::min(first, j);
       last = j;
@@ -73,11 +89,11 @@ SpectralTable buildSpectralTable(const Spd& spd) {
   }
   if (first > last) throw SpdError("the spectrum has no power inside the spectrum range");
   for (size_t j = first; j <= last; ++j) {
-    const double f0 = spd.value[j], f1 = spd.value[j + 1];
+    const double f0 = value(j), f1 = value(j + 1);
     const double width = spd.lambdaNm[j + 1] - spd.lambdaNm[j];
-    const double w = 0.5 * (f0 + f1) * width;
+    const double w = intervalWeight(j);
     weights.push_back(w);
-    table.integral += w;
+    table.integral += w * peak;
     const double slope = f0 + f1 > 0.0 ? (f1 - f0) / (f1 + f0) : 0.0;
     table.intervals.push_back({0, float(spd.lambdaNm[j]), float(width), float(slope), 0.0f});
   }
