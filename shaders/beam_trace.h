@@ -17,10 +17,34 @@ FN float drawWavelength(uint spectralFirst, uint spectralCount, uint64_t interva
   return wavelengthInInterval(interval.lambda0, interval.width, interval.slope, positionUniform);
 }
 
+// The observer's CMF at a wavelength, linear between the table's nodes and
+// zero outside (the includer provides vec3 readCmf(uint node)).
+FN vec3 cmfAtWavelength(float lambda) {
+  PRECISE float x = (lambda - constants.cmfLambdaMin) * constants.cmfNodesPerNm;
+  vec3 result = vec3(0.0f, 0.0f, 0.0f);
+  if (x >= 0.0f && x <= float(constants.cmfCount - 1u)) {
+    uint node = min(uint(x), constants.cmfCount - 2u);
+    PRECISE float t = x - float(node);
+    vec3 a = readCmf(node);
+    vec3 b = readCmf(node + 1u);
+    PRECISE vec3 c = a + (b - a) * t;
+    result = c;
+  }
+  return result;
+}
+
+// A CMF value in colour fixed point, rounded up with probability equal to
+// the fraction (unbiased); `u` is a uniform in [0, 1).
+FN uint64_t colourFixedPoint(float value, float u) {
+  PRECISE float scaled = value * kColourFixedPointScale + u;
+  return uint64_t(scaled);
+}
+
 // Returns whether beam `beamIndex` reaches the sensor, and where: the pixel
 // and wavelength bin. Every random number comes from (seed, beamIndex,
 // block), so the result is independent of batching, threads and device.
-FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin) {
+// Also returns the beam's wavelength and a spare uniform (for rounding).
+FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform) {
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
 
@@ -32,8 +56,9 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin) {
     lightIndex = searchLight(0u, constants.lightCount, joinWords(select.x, select.y));
   }
   LightRecord light = readLight(lightIndex);
-  float lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(spectral.x, spectral.y),
+  lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(spectral.x, spectral.y),
                                 uniformFromWord(spectral.z));
+  spareUniform = uniformFromWord(geometry.w);
   bin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.bins);
 
   vec3 origin;

@@ -23,6 +23,7 @@ SPECTRACE_CONSTANT uint kBindingLights = 1;
 SPECTRACE_CONSTANT uint kBindingSpectralIntervals = 2;
 SPECTRACE_CONSTANT uint kBindingHistogram = 3;  // array of kMaxHistogramChunks
 SPECTRACE_CONSTANT uint kBindingBeamRecords = 4;  // only read with kSpecRecordBeams
+SPECTRACE_CONSTANT uint kBindingCmfTable = 5;     // vec3 per node, for exact colour
 // Resolve pipeline (set 0).
 SPECTRACE_CONSTANT uint kBindingResolveConstants = 0;
 SPECTRACE_CONSTANT uint kBindingBinWeights = 1;
@@ -83,7 +84,16 @@ struct SpectralInterval {
   float padding0;
 };
 
-// Scene-wide constants of the trace pass.
+// Exact colour: each counted beam also adds its own x̄, ȳ, z̄ (the CMF at
+// its wavelength) to three per-pixel counters, in fixed point with this many
+// units per CMF unit, rounded stochastically (unbiased). Range: a hit adds at
+// most 2.1 * 2^20 + 1 < 2^22 (the largest CMF value is z̄10's 2.02), so a
+// uint64 counter holds 2^42 = 4.4e12 hits in one pixel; the quantum, 2^-20
+// of a CMF unit, adds rounding noise far below the Monte Carlo noise.
+SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
+
+// Scene-wide constants of the trace pass. Each pixel owns countersPerPixel
+// 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour.
 struct TraceConstants {
   vec2 sensorHalfSize;      // metres
   vec2 pixelsPerMetre;
@@ -96,7 +106,13 @@ struct TraceConstants {
   float apertureDistance;   // metres in front of the sensor; 0 = bare sensor
   float apertureRadiusSq;   // metres^2
   uint pixelsPerChunk;      // histogram chunk size in whole pixels
+  uint countersPerPixel;    // bins, or bins + 3 with exact colour
+  uint exactColour;         // 1: accumulate per-beam CMF values
+  uint cmfCount;            // nodes of the CMF table
+  float cmfLambdaMin;       // nm of node 0
+  float cmfNodesPerNm;      // 1 / node spacing
   uint padding0;
+  uint padding1;
   uint64_t seed;
 };
 
@@ -111,7 +127,11 @@ struct ResolveConstants {
   uint pixelCount;
   uint bins;
   uint pixelsPerChunk;
+  uint countersPerPixel;
+  uint exactColour;          // 1: XYZ from the per-beam colour counters
   float irradiancePerCount;  // W/m^2 carried by one count (per bin)
+  float xyzPerColourUnit;    // 683 * irradiancePerCount / kColourFixedPointScale
+  float padding0;
   vec3 xyzToRgbRow0;         // linear sRGB = rows . XYZ
   vec3 xyzToRgbRow1;
   vec3 xyzToRgbRow2;
@@ -141,9 +161,9 @@ struct RngCheckPush {
 #ifdef __cplusplus
 static_assert(sizeof(LightRecord) == 80);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 64);
+static_assert(sizeof(TraceConstants) == 88);
 static_assert(sizeof(TracePush) == 16);
-static_assert(sizeof(ResolveConstants) == 52);
+static_assert(sizeof(ResolveConstants) == 68);
 static_assert(sizeof(ResolvedPixel) == 28);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(ResolvePush) == 8);

@@ -43,7 +43,7 @@ void main() {
   if (slot >= push.pixelCount) return;
   uint pixel = push.firstPixel + slot;
   uint chunk = pixel / rc.pixelsPerChunk;
-  uint base = (pixel - chunk * rc.pixelsPerChunk) * rc.bins;
+  uint base = (pixel - chunk * rc.pixelsPerChunk) * rc.countersPerPixel;
   uint64_t total = 0ul;  // exact
   vec3 weighted = vec3(0.0);
   for (uint b = 0u; b < rc.bins; ++b) {
@@ -52,6 +52,10 @@ void main() {
     weighted += float(count) * binWeights[b];
   }
   vec3 xyz = weighted * rc.irradiancePerCount;
+  if (rc.exactColour != 0u) {
+    xyz = vec3(float(readCount(chunk, base + rc.bins)), float(readCount(chunk, base + rc.bins + 1u)),
+               float(readCount(chunk, base + rc.bins + 2u))) * rc.xyzPerColourUnit;
+  }
   ResolvedPixel result;
   result.xyz = xyz;
   result.rgb = vec3(dot(rc.xyzToRgbRow0, xyz), dot(rc.xyzToRgbRow1, xyz), dot(rc.xyzToRgbRow2, xyz));

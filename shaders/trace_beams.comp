@@ -26,6 +26,9 @@ layout(set = 0, binding = kBindingHistogram, scalar) buffer HistogramChunk {
 layout(set = 0, binding = kBindingBeamRecords, scalar) writeonly buffer BeamRecordBlock {
   uvec2 beamRecords[];  // (pixel, bin), or (kBeamMissed, kBeamMissed)
 };
+layout(set = 0, binding = kBindingCmfTable, scalar) readonly buffer CmfBlock {
+  vec3 cmfTable[];
+};
 layout(push_constant, scalar) uniform PushBlock {
   TracePush push;
 };
@@ -34,22 +37,23 @@ uint64_t readLightCdf(uint i) { return lights[i].selectCdfLow; }
 uint64_t readSpectralCdf(uint i) { return intervals[i].cdfLow; }
 LightRecord readLight(uint i) { return lights[i]; }
 SpectralInterval readInterval(uint i) { return intervals[i]; }
+vec3 readCmf(uint i) { return cmfTable[i]; }
 
 #include "philox.glsl"
 #include "beam_math.h"
 #include "beam_trace.h"
 
 // Constant indices only: no non-uniform descriptor indexing needed.
-void addCount(uint chunk, uint index) {
+void addCount(uint chunk, uint index, uint64_t amount) {
   switch (chunk) {
-    case 0u: atomicAdd(histogram[0].counts[index], 1ul); break;
-    case 1u: atomicAdd(histogram[1].counts[index], 1ul); break;
-    case 2u: atomicAdd(histogram[2].counts[index], 1ul); break;
-    case 3u: atomicAdd(histogram[3].counts[index], 1ul); break;
-    case 4u: atomicAdd(histogram[4].counts[index], 1ul); break;
-    case 5u: atomicAdd(histogram[5].counts[index], 1ul); break;
-    case 6u: atomicAdd(histogram[6].counts[index], 1ul); break;
-    default: atomicAdd(histogram[7].counts[index], 1ul); break;
+    case 0u: atomicAdd(histogram[0].counts[index], amount); break;
+    case 1u: atomicAdd(histogram[1].counts[index], amount); break;
+    case 2u: atomicAdd(histogram[2].counts[index], amount); break;
+    case 3u: atomicAdd(histogram[3].counts[index], amount); break;
+    case 4u: atomicAdd(histogram[4].counts[index], amount); break;
+    case 5u: atomicAdd(histogram[5].counts[index], amount); break;
+    case 6u: atomicAdd(histogram[6].counts[index], amount); break;
+    default: atomicAdd(histogram[7].counts[index], amount); break;
   }
 }
 
@@ -58,11 +62,20 @@ void main() {
   if (local >= push.beamCount) return;
   uint pixel;
   uint bin;
-  bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin);
+  float lambda;
+  float spareUniform;
+  bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin, lambda, spareUniform);
   if (recordBeams != 0u) {
     beamRecords[local] = hit ? uvec2(pixel, bin) : uvec2(kBeamMissed, kBeamMissed);
   } else if (hit) {
     uint chunk = pixel / constants.pixelsPerChunk;
-    addCount(chunk, (pixel - chunk * constants.pixelsPerChunk) * constants.bins + bin);
+    uint base = (pixel - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
+    addCount(chunk, base + bin, 1ul);
+    if (constants.exactColour != 0u) {
+      vec3 cmf = cmfAtWavelength(lambda);
+      addCount(chunk, base + constants.bins, colourFixedPoint(cmf.x, spareUniform));
+      addCount(chunk, base + constants.bins + 1u, colourFixedPoint(cmf.y, spareUniform));
+      addCount(chunk, base + constants.bins + 2u, colourFixedPoint(cmf.z, spareUniform));
+    }
   }
 }

@@ -96,6 +96,9 @@ TEST(CpuGpuAgreement, HistogramsOfARenderAgree) {
   std::printf("histograms: %llu hits on the CPU, %llu on the GPU, %.6f%% of counts in different cells\n",
               (unsigned long long)fromCpu.total(), (unsigned long long)fromGpu.total(), 100.0 * moved);
   EXPECT_LE(moved, 1e-4);
+  // With every beam agreeing, the exact-colour sums agree too.
+  ASSERT_TRUE(fromGpu.hasExactColour());
+  EXPECT_EQ(fromCpu.colourSums, fromGpu.colourSums);
 }
 
 TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {

@@ -17,18 +17,22 @@ using namespace glm;
 class BeamKernel {
  public:
   BeamKernel(const TraceConstants& traceConstants, std::span<const LightRecord> lightRecords,
-             std::span<const SpectralInterval> spectralIntervals)
-      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals) {}
+             std::span<const SpectralInterval> spectralIntervals, std::span<const glm::vec3> cmfNodes = {})
+      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), cmf(cmfNodes) {}
 
   // Whether beam `index` reaches the sensor, and its pixel and bin. (The
   // shared functions cannot be const-qualified, as GLSL has no such thing;
   // the kernel is small, so each thread uses its own copy.)
-  bool trace(uint64_t index, uint& pixelOut, uint& binOut) { return traceBeam(index, pixelOut, binOut); }
+  bool trace(uint64_t index, uint& pixelOut, uint& binOut) {
+    float lambda, spare;
+    return traceBeam(index, pixelOut, binOut, lambda, spare);
+  }
 
  private:
   TraceConstants constants;
   std::span<const LightRecord> lights;
   std::span<const SpectralInterval> intervals;
+  std::span<const glm::vec3> cmf;
 
   static uvec4 philox4x32(uint64_t seed, uint64_t index, uint block) {
     const auto w = spectrace::philoxWords(seed, index, block);
@@ -38,6 +42,7 @@ class BeamKernel {
   uint64_t readSpectralCdf(uint i) const { return intervals[i].cdfLow; }
   LightRecord readLight(uint i) const { return lights[i]; }
   SpectralInterval readInterval(uint i) const { return intervals[i]; }
+  vec3 readCmf(uint i) const { return cmf[i]; }
 
  public:
   // The shared functions are public so tests can probe them one by one.

@@ -10,9 +10,12 @@ namespace spectrace {
 
 uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCount,
                     SpectralHistogram& histogram, const CpuTraceOptions& options) {
-  if (histogram.pixelsX != plan.pixelsX || histogram.pixelsY != plan.pixelsY || histogram.bins != plan.bins)
-    histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins);
-  const device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals);
+  if (histogram.pixelsX != plan.pixelsX || histogram.pixelsY != plan.pixelsY || histogram.bins != plan.bins ||
+      histogram.hasExactColour() != plan.exactColour())
+    histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
+  const device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals, plan.cmfTable);
+  const bool exactColour = plan.exactColour();
+  uint64_t* colourSums = histogram.colourSums.data();
   unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
 
   // Threads take blocks of beams in order. When cancelled, each finishes
@@ -38,8 +41,15 @@ uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCoun
       const uint64_t end = std::min(beamCount, begin + kBlock);
       for (uint64_t i = begin; i < end; ++i) {
         uint32_t pixel, bin;
-        if (local.trace(firstBeam + i, pixel, bin)) {
+        float lambda, spare;
+        if (local.traceBeam(firstBeam + i, pixel, bin, lambda, spare)) {
           std::atomic_ref<uint64_t>(counts[size_t(pixel) * bins + bin]).fetch_add(1, std::memory_order_relaxed);
+          if (exactColour) {
+            const glm::vec3 c = local.cmfAtWavelength(lambda);
+            uint64_t* sums = colourSums + size_t(pixel) * 3;
+            for (int k = 0; k < 3; ++k)
+              std::atomic_ref<uint64_t>(sums[k]).fetch_add(local.colourFixedPoint(c[k], spare), std::memory_order_relaxed);
+          }
         }
       }
     }

@@ -1,5 +1,7 @@
 #include "cpu/resolve_cpu.h"
 
+#include "device_shared.h"
+
 namespace spectrace {
 
 RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters) {
@@ -20,6 +22,10 @@ RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParame
       xyz += double(c) * glm::dvec3(w[0], w[1], w[2]);
     }
     xyz *= parameters.irradiancePerCount;
+    if (parameters.useExactColour && histogram.hasExactColour()) {
+      const double perUnit = 683.0 * parameters.irradiancePerCount / double(device::kColourFixedPointScale);
+      for (int k = 0; k < 3; ++k) xyz[k] = double(histogram.colourSums[p * 3 + k]) * perUnit;
+    }
     const glm::dvec3 rgb = parameters.xyzToRgb * xyz;
     for (int k = 0; k < 3; ++k) {
       image.xyz[p * 3 + k] = float(xyz[k]);

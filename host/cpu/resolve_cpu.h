@@ -17,6 +17,9 @@ struct ResolveParameters {
   std::vector<std::array<double, 3>> binWeights;
   glm::dmat3 xyzToRgb{1.0};
   double irradiancePerCount = 0.0;  // W/m^2 per count
+  // Take XYZ from the per-beam colour sums when the histogram has them
+  // (exact whatever the bin count), else from the bin-averaged CMFs.
+  bool useExactColour = true;
 };
 
 RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters);

@@ -11,10 +11,19 @@ namespace spectrace {
 struct SpectralHistogram {
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
   std::vector<uint64_t> counts;
+  // With exact colour: per pixel, the sums of every counted beam's own
+  // x̄, ȳ, z̄ in colour fixed point (kColourFixedPointScale units); else empty.
+  std::vector<uint64_t> colourSums;
 
   SpectralHistogram() = default;
-  SpectralHistogram(uint32_t px, uint32_t py, uint32_t nbins)
-      : pixelsX(px), pixelsY(py), bins(nbins), counts(size_t(px) * py * nbins, 0) {}
+  SpectralHistogram(uint32_t px, uint32_t py, uint32_t nbins, bool exactColour = false)
+      : pixelsX(px), pixelsY(py), bins(nbins), counts(size_t(px) * py * nbins, 0),
+        colourSums(exactColour ? size_t(px) * py * 3 : 0, 0) {}
+
+  bool hasExactColour() const { return !colourSums.empty(); }
+  bool sameShape(const SpectralHistogram& o) const {
+    return o.pixelsX == pixelsX && o.pixelsY == pixelsY && o.bins == bins && o.colourSums.size() == colourSums.size();
+  }
 
   uint64_t& at(uint32_t pixel, uint32_t bin) { return counts[size_t(pixel) * bins + bin]; }
   uint64_t at(uint32_t pixel, uint32_t bin) const { return counts[size_t(pixel) * bins + bin]; }
@@ -25,9 +34,9 @@ struct SpectralHistogram {
   }
   // Adds another histogram of the same shape (a render over other beams).
   void merge(const SpectralHistogram& other) {
-    if (other.pixelsX != pixelsX || other.pixelsY != pixelsY || other.bins != bins)
-      throw std::invalid_argument("cannot merge histograms of different shapes");
+    if (!sameShape(other)) throw std::invalid_argument("cannot merge histograms of different shapes");
     for (size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+    for (size_t i = 0; i < colourSums.size(); ++i) colourSums[i] += other.colourSums[i];
   }
 };
 

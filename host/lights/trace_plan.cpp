@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_frame.h"
+#include "colour/colour.h"
 #include "spectrum/wavelength_sampler.h"
 
 namespace spectrace {
@@ -26,7 +27,7 @@ std::string sceneName(const Scene& scene) {
 
 }  // namespace
 
-TracePlan buildTracePlan(const Scene& scene, uint64_t seed) {
+TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptions& options) {
   TracePlan plan;
   const SpectrumRange& range = scene.spectrum;
   const Camera& camera = scene.camera;
@@ -112,6 +113,14 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed) {
     c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
   }
   c.pixelsPerChunk = uint32_t(plan.pixelCount());
+  c.exactColour = options.exactColour ? 1u : 0u;
+  c.countersPerPixel = plan.bins + (options.exactColour ? 3u : 0u);
+  const Observer& observer = observerByName(scene.observer);
+  for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
+    plan.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));
+  c.cmfCount = uint32_t(observer.lambdaNm.size());
+  c.cmfLambdaMin = float(observer.lambdaNm.front());
+  c.cmfNodesPerNm = float((observer.lambdaNm.size() - 1) / (observer.lambdaNm.back() - observer.lambdaNm.front()));
   c.seed = seed;
   return plan;
 }

@@ -23,6 +23,7 @@ struct TracePlan {
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights;
   std::vector<device::SpectralInterval> intervals;
+  std::vector<glm::vec3> cmfTable;      // the observer's CMF nodes, for exact colour
   std::vector<LightSummary> summaries;  // one per scene light, in scene order
   double tracedPowerW = 0.0;            // sum over traced lights
   double pixelAreaM2 = 0.0;
@@ -30,15 +31,22 @@ struct TracePlan {
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
 
   uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
-  uint64_t counterCount() const { return pixelCount() * bins; }
+  bool exactColour() const { return constants.exactColour != 0; }
+  uint32_t countersPerPixel() const { return constants.countersPerPixel; }
   // W/m^2 per bin carried by one count when `beams` beams were traced: each
   // beam carries tracedPowerW * exposure / beams joules, spread over one
   // pixel's area and the exposure time (which cancels).
   double irradiancePerCount(uint64_t beams) const { return tracedPowerW / (double(beams) * pixelAreaM2); }
 };
 
+struct TracePlanOptions {
+  // Accumulate each counted beam's own CMF values per pixel (exact colour
+  // whatever the bin count); otherwise colour comes from bin-averaged CMFs.
+  bool exactColour = true;
+};
+
 // Throws SceneError (with the scene file's name) for scenes that cannot be
 // traced, e.g. when no light has power inside the spectrum range.
-TracePlan buildTracePlan(const Scene& scene, uint64_t seed);
+TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptions& options = {});
 
 }  // namespace spectrace

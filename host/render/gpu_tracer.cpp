@@ -21,7 +21,8 @@ Buffer uploadedBuffer(const vk_util::Context& context, const std::vector<T>& dat
 
 std::vector<vk_util::BindingSpec> traceBindings() {
   return {{device::kBindingTraceConstants}, {device::kBindingLights}, {device::kBindingSpectralIntervals},
-          {device::kBindingHistogram, device::kMaxHistogramChunks}, {device::kBindingBeamRecords}};
+          {device::kBindingHistogram, device::kMaxHistogramChunks}, {device::kBindingBeamRecords},
+          {device::kBindingCmfTable}};
 }
 
 // 2D dispatch shape for `count` invocations: rows of at most the device's
@@ -37,22 +38,22 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
 
 }  // namespace
 
-HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t bins, uint64_t maxStorageBufferRange,
+HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPixel, uint64_t maxStorageBufferRange,
                                          uint64_t maxAllocation) {
-  const uint64_t bytesPerPixel = uint64_t(bins) * sizeof(uint64_t);
+  const uint64_t bytesPerPixel = uint64_t(countersPerPixel) * sizeof(uint64_t);
   const uint64_t limit = std::min(maxStorageBufferRange, maxAllocation);
   const uint64_t perChunk = std::min<uint64_t>(pixels, limit / bytesPerPixel);
   if (perChunk == 0)
     throw vk_util::VulkanError(fmt::format(
-        "one pixel's histogram ({} bins x 8 bytes) exceeds the device's storage buffer range of {} bytes", bins, limit));
+        "one pixel's histogram ({} counters x 8 bytes) exceeds the device's storage buffer range of {} bytes", countersPerPixel, limit));
   HistogramSplit split;
   split.pixelsPerChunk = uint32_t(std::min<uint64_t>(perChunk, UINT32_MAX));
   split.chunkCount = uint32_t((pixels + split.pixelsPerChunk - 1) / split.pixelsPerChunk);
   if (split.chunkCount > device::kMaxHistogramChunks)
     throw vk_util::VulkanError(fmt::format(
-        "the histogram needs {:.2f} GiB ({} pixels x {} bins x 8 bytes), which is {} buffers of at most "
+        "the histogram needs {:.2f} GiB ({} pixels x {} counters x 8 bytes), which is {} buffers of at most "
         "maxStorageBufferRange = {} bytes; spectrace supports {}. Use fewer pixels or bins.",
-        double(pixels * bytesPerPixel) / (1 << 30), pixels, bins, split.chunkCount, limit,
+        double(pixels * bytesPerPixel) / (1 << 30), pixels, countersPerPixel, split.chunkCount, limit,
         device::kMaxHistogramChunks));
   return split;
 }
@@ -61,12 +62,13 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
     : context_(context),
       plan_(plan),
       workgroupSize_(workgroupSize),
-      split_(HistogramSplit::forDevice(plan.pixelCount(), plan.bins, context.info().maxStorageBufferRange,
+      split_(HistogramSplit::forDevice(plan.pixelCount(), plan.countersPerPixel(), context.info().maxStorageBufferRange,
                                        context.info().maxMemoryAllocationSize)),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
       lights_(uploadedBuffer(context, plan.lights)),
       intervals_(uploadedBuffer(context, plan.intervals)),
       unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
+      cmfTable_(uploadedBuffer(context, plan.cmfTable)),
       tracePipeline_(context, embedded::spv_trace_beams(),
                      traceBindings(), sizeof(device::TracePush), {workgroupSize, 0u}),
       resolvePipeline_(context, embedded::spv_resolve(),
@@ -76,7 +78,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
       timestamps_(context, 2) {
   plan_.constants.pixelsPerChunk = split_.pixelsPerChunk;
   traceConstants_.upload(&plan_.constants, sizeof(plan_.constants));
-  const uint64_t pixelBytes = uint64_t(plan.bins) * sizeof(uint64_t);
+  const uint64_t pixelBytes = uint64_t(plan.countersPerPixel()) * sizeof(uint64_t);
   for (uint32_t c = 0; c < split_.chunkCount; ++c) {
     const uint64_t pixels = std::min<uint64_t>(split_.pixelsPerChunk, plan.pixelCount() - uint64_t(c) * split_.pixelsPerChunk);
     histogramChunks_.emplace_back(context, pixels * pixelBytes, vk::BufferUsageFlags{}, MemoryPlacement::DeviceLocal);
@@ -85,6 +87,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
   tracePipeline_.bindBuffer(device::kBindingLights, 0, lights_);
   tracePipeline_.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
   tracePipeline_.bindBuffer(device::kBindingBeamRecords, 0, unusedBeamRecords_);
+  tracePipeline_.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c) {
@@ -135,6 +138,7 @@ std::vector<glm::uvec2> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t co
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c)
     recorder.bindBuffer(device::kBindingHistogram, c, histogramChunks_[c < split_.chunkCount ? c : 0]);
   recorder.bindBuffer(device::kBindingBeamRecords, 0, records);
+  recorder.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
   const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
   const device::TracePush push{firstBeam, count, shape.invocationsPerRow};
   context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) { recorder.recordDispatch(cb, &push, shape.groupsX, shape.groupsY); });
@@ -160,11 +164,19 @@ std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t se
 }
 
 SpectralHistogram GpuTracer::downloadHistogram() const {
-  SpectralHistogram histogram(plan_.pixelsX, plan_.pixelsY, plan_.bins);
-  size_t offset = 0;
+  SpectralHistogram histogram(plan_.pixelsX, plan_.pixelsY, plan_.bins, plan_.exactColour());
+  const uint32_t stride = plan_.countersPerPixel();
+  std::vector<uint64_t> counters;
+  size_t pixel = 0;
   for (const auto& chunk : histogramChunks_) {
-    chunk.download(histogram.counts.data() + offset, chunk.size());
-    offset += chunk.size() / sizeof(uint64_t);
+    counters.resize(chunk.size() / sizeof(uint64_t));
+    chunk.download(counters.data(), chunk.size());
+    // Device layout: per pixel, `bins` counts then X, Y, Z colour sums.
+    for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
+      const uint64_t* src = counters.data() + local * stride;
+      std::copy(src, src + plan_.bins, histogram.counts.begin() + pixel * plan_.bins);
+      if (plan_.exactColour()) std::copy(src + plan_.bins, src + stride, histogram.colourSums.begin() + pixel * 3);
+    }
   }
   return histogram;
 }
@@ -175,7 +187,10 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
   constants.pixelCount = uint32_t(pixelCount);
   constants.bins = plan_.bins;
   constants.pixelsPerChunk = split_.pixelsPerChunk;
+  constants.countersPerPixel = plan_.countersPerPixel();
+  constants.exactColour = parameters.useExactColour && plan_.exactColour() ? 1u : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
+  constants.xyzPerColourUnit = float(683.0 * parameters.irradiancePerCount / device::kColourFixedPointScale);
   // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
   const glm::dmat3& m = parameters.xyzToRgb;
   constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);

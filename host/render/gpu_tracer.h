@@ -21,7 +21,7 @@ struct HistogramSplit {
   uint32_t chunkCount = 0;
   // Throws vk_util::VulkanError when the histogram needs more than
   // kMaxHistogramChunks chunks.
-  static HistogramSplit forDevice(uint64_t pixels, uint32_t bins, uint64_t maxStorageBufferRange,
+  static HistogramSplit forDevice(uint64_t pixels, uint32_t countersPerPixel, uint64_t maxStorageBufferRange,
                                   uint64_t maxAllocation);
 };
 
@@ -53,6 +53,7 @@ class GpuTracer {
   vk_util::Buffer lights_;
   vk_util::Buffer intervals_;
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
+  vk_util::Buffer cmfTable_;
   std::vector<vk_util::Buffer> histogramChunks_;
   vk_util::ComputePipeline tracePipeline_;
   vk_util::ComputePipeline resolvePipeline_;
