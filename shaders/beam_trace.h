@@ -34,10 +34,14 @@ FN vec3 cmfAtWavelength(float lambda) {
 }
 
 // A CMF value in colour fixed point, rounded up with probability equal to
-// the fraction (unbiased); `u` is a uniform in [0, 1).
+// its fraction, so the sum is unbiased (to 2^-24 of a quantum, the
+// resolution of `u`, a uniform in [0, 1)). Scaling by 2^20, floor and the
+// subtraction are all exact in float.
 FN uint64_t colourFixedPoint(float value, float u) {
-  PRECISE float scaled = value * kColourFixedPointScale + u;
-  return uint64_t(scaled);
+  PRECISE float scaled = value * kColourFixedPointScale;
+  PRECISE float whole = floor(scaled);
+  PRECISE float fraction = scaled - whole;
+  return uint64_t(whole) + (u < fraction ? 1ul : 0ul);
 }
 
 // Returns whether beam `beamIndex` reaches the sensor, and where: the pixel

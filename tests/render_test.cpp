@@ -89,8 +89,20 @@ void expectSameHistogram(const SpectralHistogram& a, const SpectralHistogram& b,
   EXPECT_EQ(a.colourSums, b.colourSums) << what;
 }
 
+// Images resolved on one device from identical histograms are identical.
+void expectSameImage(const RenderImage& a, const RenderImage& b, const char* what) {
+  EXPECT_EQ(a.rgb, b.rgb) << what;
+  EXPECT_EQ(a.xyz, b.xyz) << what;
+  EXPECT_EQ(a.irradiance, b.irradiance) << what;
+}
+
 TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
-  const auto reference = renderWith(DeviceChoice::Gpu, 3'000'000, 3'000'000).histogram;
+  const RenderResult gpuReference = renderWith(DeviceChoice::Gpu, 3'000'000, 3'000'000);
+  const auto& reference = gpuReference.histogram;
+  expectSameImage(renderWith(DeviceChoice::Gpu, 3'000'000, 700'001).image, gpuReference.image, "gpu image, batch 700001");
+  expectSameImage(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 32).image, gpuReference.image, "gpu image, workgroup 32");
+  expectSameImage(renderWith(DeviceChoice::Cpu, 3'000'000, 0, 64, 1).image,
+                  renderWith(DeviceChoice::Cpu, 3'000'000, 999'999, 64, 2).image, "cpu image, 1 vs 2 threads");
   ASSERT_TRUE(reference.hasExactColour());
   expectSameHistogram(renderWith(DeviceChoice::Gpu, 3'000'000, 700'001).histogram, reference, "batch 700001");
   expectSameHistogram(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 256).histogram, reference, "workgroup 256");

@@ -1,11 +1,15 @@
-// `spectrace bench`: throughput of each device on one fixed reference scene,
-// with ratios taken in the same run (machines are noisy; only ratios in one
-// run compare).
+// `spectrace bench`: run time against error. Throughput on a fixed scene,
+// an error-vs-time sweep over the reference scenes (exact answers), and the
+// colour error of binning, on every device, with ratios taken in one run.
+#include <chrono>
+#include <ctime>
 #include <fmt/format.h>
-
-#include <sstream>
+#include <fstream>
+#include <thread>
 #include <vector>
 
+#include "bench/error_bench.h"
+#include "bench/report.h"
 #include "cli/commands.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -13,14 +17,11 @@
 namespace spectrace::cli {
 namespace {
 
-// The fixed reference scene: one D65 disk light 0.1 m in front of a bare
+// The fixed throughput scene: one D65 disk light 0.1 m in front of a bare
 // 512x512 sensor, 64 bins over 360-830 nm.
-Scene benchScene() {
+Scene throughputScene() {
   Scene scene;
   scene.spectrum = {360.0, 830.0, 64};
-  scene.camera.position = {0.0, 0.0, 0.0};
-  scene.camera.lookAt = {0.0, 0.0, 1.0};
-  scene.camera.up = {0.0, 1.0, 0.0};
   scene.camera.sensorWidthM = 0.1;
   scene.camera.sensorHeightM = 0.1;
   scene.camera.pixelsX = 512;
@@ -38,40 +39,114 @@ Scene benchScene() {
   return scene;
 }
 
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+  return buffer;
+}
+
+std::string machineDescription() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  return fmt::format("{}, {} hardware threads", model, std::thread::hardware_concurrency());
+}
+
+std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std::vector<BenchDevice>& devices,
+                                         const std::atomic<bool>& cancel) {
+  const Scene scene = throughputScene();
+  std::vector<ThroughputRow> rows;
+  fmt::print("Throughput: D65 disk light, bare 512x512 sensor, 64 bins, {} beams per device\n", command.beams);
+  fmt::print("{:<44} {:<6} {:>9} {:>10} {:>15} {:>9}\n", "device", "colour", "wall s", "Mbeam/s", "Mbeam/s device", "hit rate");
+  for (const auto& device : devices) {
+    for (bool exactColour : {true, false}) {
+      RenderOptions options;
+      options.device = device.kind == "gpu" ? DeviceChoice::Gpu : DeviceChoice::Cpu;
+      options.beams = command.beams;
+      options.cpuThreads = command.threads;
+      options.cancel = &cancel;
+      options.exactColour = exactColour;
+      RenderOptions warm = options;
+      warm.beams = uint64_t(1) << 16;
+      render(scene, warm);  // the first dispatch compiles the pipeline
+      const RenderResult result = render(scene, options);
+      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.total(),
+                        result.traceWallSeconds, result.traceDeviceSeconds};
+      fmt::print("{:<44} {:<6} {:>9.3f} {:>10.2f} {:>15} {:>8.1f}%\n", row.deviceName, exactColour ? "exact" : "bins",
+                 row.wallSeconds, double(row.beams) / row.wallSeconds * 1e-6,
+                 row.traceDeviceSeconds > 0 ? fmt::format("{:.2f}", double(row.beams) / row.traceDeviceSeconds * 1e-6) : "-",
+                 100.0 * double(row.hits) / double(row.beams));
+      rows.push_back(row);
+    }
+  }
+  for (const auto& a : rows)
+    for (const auto& b : rows)
+      if (a.device == "gpu" && b.device == "cpu" && a.exactColour == b.exactColour)
+        fmt::print("ratio {} : {} ({} colour) = {:.2f}\n", a.deviceName, b.deviceName, a.exactColour ? "exact" : "binned",
+                   (double(a.beams) / a.wallSeconds) / (double(b.beams) / b.wallSeconds));
+  return rows;
+}
+
+std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
+  // A fixed list, so the benchmark's rows are comparable between runs.
+  std::vector<std::string> scenes;
+  for (const char* name : {"point_on_axis", "point_off_axis", "disk_on_axis", "disk_off_axis", "furnace", "uniform_d65",
+                           "uniform_a", "uniform_f2", "uniform_f11", "uniform_led_b3", "laser_532", "pinhole_rect"})
+    scenes.push_back((dir / (std::string(name) + ".json")).string());
+  return scenes;
+}
+
 }  // namespace
 
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
-  const Scene scene = benchScene();
-  std::vector<std::string> devices;
-  std::stringstream list(command.devices);
-  for (std::string item; std::getline(list, item, ',');) devices.push_back(item);
+  BenchReport report;
+  report.date = utcNow();
+  report.machine = machineDescription();
+  report.devices = benchDevices(command.devices);
+  if (report.devices.empty()) throw std::runtime_error("bench: no device matches --device " + command.devices);
+  if (command.throughput) report.throughput = runThroughput(command, report.devices, cancel);
 
-  fmt::print("spectrace bench: D65 disk light, bare 512x512 sensor, 64 bins, {} beams per device\n", command.beams);
-  fmt::print("{:<8} {:<44} {:>10} {:>12} {:>10}\n", "device", "name", "wall s", "Mbeam/s", "hit rate");
-  std::vector<std::pair<std::string, double>> rates;
-  for (const auto& name : devices) {
-    RenderOptions options;
-    options.device = parseDeviceChoice(name);
-    options.beams = command.beams;
-    options.seed = 1;
-    options.cpuThreads = command.threads;
-    options.cancel = &cancel;
-    // Warm-up: pipeline compilation happens at the first dispatch.
-    RenderOptions warm = options;
-    warm.beams = uint64_t(1) << 16;
-    render(scene, warm);
-    const RenderResult result = render(scene, options);
-    const double seconds = result.traceDeviceSeconds > 0.0 ? result.traceDeviceSeconds : result.wallSeconds;
-    const double rate = double(result.beamsTraced) / result.wallSeconds;
-    fmt::print("{:<8} {:<44} {:>10.3f} {:>12.2f} {:>9.1f}%\n", result.deviceKind, result.deviceName, result.wallSeconds,
-               rate * 1e-6, 100.0 * double(result.histogram.total()) / double(result.beamsTraced));
-    if (result.traceDeviceSeconds > 0.0)
-      fmt::print("{:<8} {:<44} {:>10.3f} {:>12.2f}   (device time of the trace pass)\n", "", "", seconds,
-                 double(result.beamsTraced) / seconds * 1e-6);
-    rates.emplace_back(fmt::format("{} ({})", result.deviceKind, result.deviceName), rate);
+  if (command.sweep) {
+    std::filesystem::path dir = command.scenesDir;
+    if (dir.empty()) {
+      dir = "scenes/reference";
+      if (!std::filesystem::exists(dir)) dir = std::filesystem::path(SPECTRACE_SOURCE_DIR) / "scenes/reference";
+    }
+    SweepOptions options;
+    options.scenes = referenceScenes(dir);
+    for (double d = command.minDecade; d <= command.maxDecade + 1e-9; d += 1.0)
+      options.beamCounts.push_back(uint64_t(std::llround(std::pow(10.0, d))));
+    fmt::print("\nError sweep: {} reference scenes, {} to {} beams\n", options.scenes.size(), options.beamCounts.front(),
+               options.beamCounts.back());
+    fmt::print("{:<16} {:<6} {:>11} {:>9} {:>10} {:>10} {:>10} {:>8} {:>10}\n", "scene", "device", "beams", "wall s",
+               "relRMSE", "estimated", "bias", "ΔE mean", "FOM");
+    options.onRow = [](const SweepRow& r) {
+      fmt::print("{:<16} {:<6} {:>11} {:>9.4f} {:>10.3g} {:>10.3g} {:>+10.2e} {:>8.3f} {:>10.4g}\n", r.scene, r.device,
+                 r.beams, r.wallSeconds, r.metrics.relRmse, r.metrics.estimatedRelRmse, r.metrics.bias,
+                 r.metrics.deltaE2000Mean, r.fom);
+    };
+    report.sweep = runErrorSweep(report.devices, options);
   }
-  for (size_t i = 1; i < rates.size(); ++i)
-    fmt::print("ratio {} : {} = {:.2f}\n", rates[0].first, rates[i].first, rates[0].second / rates[i].second);
+
+  if (command.colour) {
+    fmt::print("\nColour error from binning ({} beams per render, on {})\n", command.colourBeams, report.devices[0].name);
+    fmt::print("{:<12} {:>5} {:>14} {:>14} {:>14} {:>10} {:>10}\n", "SPD", "bins", "Δxy bins", "(expected)", "Δxy per beam",
+               "ΔE bins", "ΔE beam");
+    report.colour = runColourBinStudy(report.devices[0], command.colourBeams, [](const ColourBinRow& r) {
+      fmt::print("{:<12} {:>5} {:>14.3e} {:>14.3e} {:>14.3e} {:>10.4f} {:>10.4f}\n", r.spd, r.bins, r.binnedChromaticityError,
+                 r.expectedBinnedChromaticityError, r.exactChromaticityError, r.binnedDeltaE, r.exactDeltaE);
+    });
+  }
+
+  if (command.out) {
+    writeBenchReport(*command.out, report);
+    fmt::print("\nwrote {}/benchmarks.md and {}/bench/\n", command.out->string(), command.out->string());
+  }
   return 0;
 }
 

@@ -25,9 +25,14 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 int runDevices();
 
 struct BenchCommand {
-  uint64_t beams = uint64_t(1) << 25;
-  std::string devices = "gpu,cpu";
+  uint64_t beams = uint64_t(1) << 25;   // throughput section, per device
+  std::string devices;                  // "gpu", "cpu", device names; empty = all
   unsigned threads = 0;
+  std::optional<std::filesystem::path> out;  // write benchmarks.md, CSV and plots here
+  std::filesystem::path scenesDir;      // reference scenes (default scenes/reference)
+  double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
+  uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
+  bool throughput = true, sweep = true, colour = true;
 };
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
 

@@ -37,9 +37,17 @@ int main(int argc, char** argv) {
 
   BenchCommand bench;
   auto* benchCmd = app.add_subcommand("bench", "Beams per second: Vulkan device vs CPU reference on a fixed scene");
-  benchCmd->add_option("--beams", bench.beams, "Beams per device");
-  benchCmd->add_option("--device", bench.devices, "Comma-separated list of gpu and cpu");
+  benchCmd->add_option("--beams", bench.beams, "Beams per device in the throughput section");
+  benchCmd->add_option("--device", bench.devices, "Comma-separated devices: gpu, cpu or device names (default: all)");
   benchCmd->add_option("--threads", bench.threads, "CPU reference threads (default: all)");
+  benchCmd->add_option("--out", bench.out, "Write benchmarks.md, CSV files and plots into this folder");
+  benchCmd->add_option("--scenes", bench.scenesDir, "Folder of the reference scenes (default scenes/reference)");
+  benchCmd->add_option("--min-decade", bench.minDecade, "Error sweep from 10^this beams");
+  benchCmd->add_option("--max-decade", bench.maxDecade, "Error sweep up to 10^this beams (x10 steps)");
+  benchCmd->add_option("--colour-beams", bench.colourBeams, "Beams per render of the colour-from-binning study");
+  benchCmd->add_flag("!--no-throughput", bench.throughput, "Skip the throughput section");
+  benchCmd->add_flag("!--no-sweep", bench.sweep, "Skip the error sweep");
+  benchCmd->add_flag("!--no-colour", bench.colour, "Skip the colour-from-binning study");
 
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, onSignal);

@@ -193,3 +193,32 @@ TEST(SharedMath, DirectionSamplersAreUnitVectors) {
 
 }  // namespace
 }  // namespace spectrace
+
+namespace spectrace {
+namespace {
+
+// The range argument of the exact-colour sums (device_shared.h): one hit
+// adds less than 2^22 units, so 1e12 hits in one pixel cannot overflow 64
+// bits; and the rounding is unbiased to well below a quantum.
+TEST(ColourFixedPoint, RangeAndResolutionHoldForBothObservers) {
+  SamplerFixture f(makeLineSpd(500.0));
+  for (float v : {0.0f, 1e-6f, 0.5f, 1.0f, 1.7826f, 2.02f}) {
+    for (float u : {0.0f, 0.5f, 1.0f - 1.0f / 16777216.0f}) {
+      const uint64_t fixed = f.kernel.colourFixedPoint(v, u);
+      EXPECT_LT(fixed, uint64_t(1) << 22);
+      EXPECT_LE(std::abs(double(fixed) - double(v) * device::kColourFixedPointScale), 1.0);
+    }
+  }
+  EXPECT_LT(1e12 * double(uint64_t(1) << 22), std::ldexp(1.0, 64));
+  // Averaged over the rounding uniform, the sum is exact to the uniform's
+  // resolution (here 2^-16 levels are used, so to 2^-16 of a quantum).
+  const float value = 0.123456789f;
+  double sum = 0.0;
+  constexpr int kSteps = 1 << 16;
+  for (int i = 0; i < kSteps; ++i)
+    sum += double(f.kernel.colourFixedPoint(value, float(i) / kSteps));
+  EXPECT_NEAR(sum / kSteps, double(value) * device::kColourFixedPointScale, 2.0 / kSteps + 1e-3);
+}
+
+}  // namespace
+}  // namespace spectrace

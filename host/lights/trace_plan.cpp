@@ -28,15 +28,11 @@ std::string sceneName(const Scene& scene) {
 }  // namespace
 
 TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptions& options) {
+  validateScene(scene);  // scenes built in code get the loader's guarantees too
   TracePlan plan;
   const SpectrumRange& range = scene.spectrum;
   const Camera& camera = scene.camera;
-  CameraFrame frame;
-  try {
-    frame = CameraFrame::fromCamera(camera);
-  } catch (const SceneError& e) {
-    throw SceneError(fmt::format("{}: /{}", sceneName(scene), e.what()));
-  }
+  const CameraFrame frame = CameraFrame::fromCamera(camera);
 
   plan.pixelsX = uint32_t(camera.pixelsX);
   plan.pixelsY = uint32_t(camera.pixelsY);

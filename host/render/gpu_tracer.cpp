@@ -1,6 +1,7 @@
 #include "render/gpu_tracer.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <fmt/format.h>
 
 #include "embedded_shaders.h"
@@ -179,6 +180,24 @@ SpectralHistogram GpuTracer::downloadHistogram() const {
     }
   }
   return histogram;
+}
+
+void GpuTracer::uploadHistogram(const SpectralHistogram& histogram) {
+  if (histogram.pixelsX != plan_.pixelsX || histogram.pixelsY != plan_.pixelsY || histogram.bins != plan_.bins ||
+      histogram.hasExactColour() != plan_.exactColour())
+    throw std::invalid_argument("uploadHistogram: the histogram's shape differs from the trace plan's");
+  const uint32_t stride = plan_.countersPerPixel();
+  std::vector<uint64_t> counters;
+  size_t pixel = 0;
+  for (auto& chunk : histogramChunks_) {
+    counters.resize(chunk.size() / sizeof(uint64_t));
+    for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
+      uint64_t* dst = counters.data() + local * stride;
+      std::copy_n(histogram.counts.begin() + pixel * plan_.bins, plan_.bins, dst);
+      if (plan_.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + plan_.bins);
+    }
+    chunk.upload(counters.data(), chunk.size());
+  }
 }
 
 RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seconds) {

@@ -34,6 +34,9 @@ class GpuTracer {
   double trace(uint64_t firstBeam, uint64_t beamCount);
   void clearHistogram();
   SpectralHistogram downloadHistogram() const;
+  // Replaces the device histogram (same shape as the plan's), e.g. to go on
+  // from a saved partial render.
+  void uploadHistogram(const SpectralHistogram& histogram);
   // Resolves on the device; `seconds` receives the device time if non-null.
   RenderImage resolve(const ResolveParameters& parameters, double* seconds = nullptr);
 

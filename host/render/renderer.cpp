@@ -68,7 +68,9 @@ uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const Rend
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto start = Clock::now();
   RenderResult result;
-  result.plan = buildTracePlan(scene, options.seed);
+  TracePlanOptions planOptions;
+  planOptions.exactColour = options.exactColour;
+  result.plan = buildTracePlan(scene, options.seed, planOptions);
   const TracePlan& plan = result.plan;
 
   std::unique_ptr<vk_util::Context> vulkan;
@@ -82,7 +84,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const unsigned threads = options.cpuThreads ? options.cpuThreads : std::max(1u, std::thread::hardware_concurrency());
     result.deviceKind = "cpu";
     result.deviceName = fmt::format("CPU reference, {} threads", threads);
-    result.histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins);
+    result.histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
   }
   if (options.log)
     options.log(fmt::format("device: {} ({})", result.deviceName, result.deviceKind == "gpu" ? "Vulkan" : "C++"));
@@ -116,6 +118,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     }
   }
   result.beamsTraced = done;
+  result.traceWallSeconds = secondsSince(traceStart);
   if (gpu) result.histogram = gpu->downloadHistogram();
   result.image = resolveNow(done);
   result.wallSeconds = secondsSince(start);

@@ -24,6 +24,7 @@ struct RenderOptions {
   DeviceChoice device = DeviceChoice::Auto;
   unsigned cpuThreads = 0;           // 0: all hardware threads
   uint32_t workgroupSize = 64;
+  bool exactColour = true;           // per-beam CMF sums (see TracePlanOptions)
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
@@ -42,6 +43,7 @@ struct RenderResult {
   std::string deviceKind;       // "gpu" or "cpu"
   std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads"
   double wallSeconds = 0.0;
+  double traceWallSeconds = 0.0;      // the batch loop alone (no device setup, no resolve)
   double traceDeviceSeconds = 0.0;    // GPU timestamps (0 on the CPU)
   double resolveDeviceSeconds = 0.0;
 };

@@ -86,6 +86,13 @@ struct Scene {
 // Reads, parses and validates a scene file. Relative CSV paths resolve
 // against the scene file's folder.
 Scene loadScene(const std::filesystem::path& file);
+// Checks the invariants of a scene built in code (the loader enforces them
+// for files, with the JSON field of each value): finite coordinates, a
+// camera with a viewing direction and an up vector off it, and lights with
+// a non-zero direction, positive size, cone in (0, 180] degrees, and finite
+// power >= 0. Throws SceneError "<file or <scene>>: <field>: <what>".
+void validateScene(const Scene& scene);
+
 // Parses JSON text; `file` is used for messages and relative paths.
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& file);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.

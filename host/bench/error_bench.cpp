@@ -1,0 +1,265 @@
+#include "bench/error_bench.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "colour/colour.h"
+#include "cpu/reference_tracer.h"
+#include "lights/trace_plan.h"
+#include "reference/exact_solution.h"
+#include "render/gpu_tracer.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "vulkan/context.h"
+
+namespace spectrace {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Colour from bins converges to the bin-averaged colour, not the exact one:
+// compare each resolve with what it estimates.
+ReferenceImage toReference(const ExactImage& exact, bool exactColour) {
+  ReferenceImage ref;
+  ref.width = exact.width;
+  ref.height = exact.height;
+  ref.irradiance = exact.irradiance;
+  ref.valid = exact.valid;
+  for (const auto& c : exactColour ? exact.xyz : exact.xyzBinned) ref.xyz.insert(ref.xyz.end(), c.begin(), c.end());
+  return ref;
+}
+
+// One device's tracer for one scene, reused across beam counts so that
+// only tracing and resolving are timed.
+struct DeviceRun {
+  const BenchDevice& device;
+  const vk_util::Context* vulkan;
+  const TracePlan& plan;
+  std::unique_ptr<GpuTracer> gpu;
+
+  DeviceRun(const BenchDevice& d, const vk_util::Context* context, const TracePlan& p, const Scene& scene)
+      : device(d), vulkan(context), plan(p) {
+    if (vulkan) {
+      // The first dispatch of each pipeline compiles it: keep that out of
+      // the timings.
+      gpu = std::make_unique<GpuTracer>(*vulkan, plan);
+      gpu->trace(0, 4096);
+      gpu->resolve(resolveParametersFor(scene, plan, 4096));
+    }
+  }
+
+  // Renders beams [0, beams); fills the row's times and returns the image
+  // and histogram.
+  std::pair<RenderImage, SpectralHistogram> render(const Scene& scene, uint64_t beams, SweepRow& row) {
+    const ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
+    if (gpu) {
+      gpu->clearHistogram();
+      const auto start = Clock::now();
+      row.traceDeviceSeconds = gpu->trace(0, beams);
+      RenderImage image = gpu->resolve(parameters, &row.resolveDeviceSeconds);
+      row.wallSeconds = since(start);
+      return {std::move(image), gpu->downloadHistogram()};
+    }
+    SpectralHistogram histogram;
+    const auto start = Clock::now();
+    traceOnCpu(plan, 0, beams, histogram);
+    RenderImage image = resolveOnCpu(histogram, parameters);
+    row.wallSeconds = since(start);
+    return {std::move(image), std::move(histogram)};
+  }
+};
+
+std::unique_ptr<vk_util::Context> openDevice(const BenchDevice& device) {
+  if (device.kind != "gpu") return nullptr;
+  return vk_util::Context::create(uint32_t(device.vulkanIndex));
+}
+
+}  // namespace
+
+std::vector<BenchDevice> benchDevices(const std::string& filter) {
+  std::vector<std::string> wanted;
+  std::stringstream list(filter);
+  for (std::string item; std::getline(list, item, ',');)
+    if (!item.empty()) wanted.push_back(item);
+  auto accepted = [&](const BenchDevice& d) {
+    if (wanted.empty()) return true;
+    for (const auto& w : wanted)
+      if (w == d.kind || w == d.name) return true;
+    return false;
+  };
+  std::vector<BenchDevice> devices;
+  try {
+    for (const auto& info : vk_util::enumerateDevices()) {
+      if (!info.missingFeatures().empty()) continue;
+      BenchDevice d{"gpu", info.name, int(info.index)};
+      if (accepted(d)) devices.push_back(d);
+    }
+  } catch (const vk_util::VulkanError&) {
+    // No Vulkan: the CPU reference alone.
+  }
+  BenchDevice cpu{"cpu", fmt::format("CPU reference, {} threads", std::max(1u, std::thread::hardware_concurrency())), -1};
+  if (accepted(cpu)) devices.push_back(cpu);
+  return devices;
+}
+
+std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, const SweepOptions& options) {
+  std::vector<SweepRow> rows;
+  for (const auto& device : devices) {
+    const auto vulkan = openDevice(device);
+    for (const auto& path : options.scenes) {
+      const Scene scene = loadScene(path);
+      const auto exact = exactSolution(scene);
+      if (!exact) throw std::runtime_error(fmt::format("{}: no exact solution is known for this scene", path));
+      const ReferenceImage reference = toReference(*exact, options.exactColour);
+      TracePlanOptions planOptions;
+      planOptions.exactColour = options.exactColour;
+      const TracePlan plan = buildTracePlan(scene, options.seed, planOptions);
+      DeviceRun run(device, vulkan.get(), plan, scene);
+      for (uint64_t beams : options.beamCounts) {
+        SweepRow row;
+        row.scene = std::filesystem::path(path).stem().string();
+        row.device = device.kind;
+        row.deviceName = device.name;
+        row.beams = beams;
+        row.exactColour = options.exactColour;
+        auto [image, histogram] = run.render(scene, beams, row);
+        row.hits = histogram.total();
+        row.metrics = computeErrorMetrics(image, reference, estimatedRelativeVariance(histogram, beams));
+        row.fom = figureOfMerit(row.metrics.relMse, row.wallSeconds);
+        if (options.onRow) options.onRow(row);
+        rows.push_back(row);
+      }
+    }
+  }
+  return rows;
+}
+
+std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t beams,
+                                            const std::function<void(const ColourBinRow&)>& onRow) {
+  const auto vulkan = openDevice(device);
+  const Observer& observer = cie1931Observer();
+  struct NamedSpd {
+    std::string name;
+    Spd spd;
+  };
+  const std::vector<NamedSpd> spds = {{"D65", *cieIlluminant("D65")},
+                                      {"F11", *cieIlluminant("F11")},
+                                      {"LED-B3", *cieIlluminant("LED-B3")},
+                                      {"line 532 nm", makeLineSpd(532.0)}};
+  std::vector<ColourBinRow> rows;
+  for (const auto& named : spds) {
+    for (int bins : {16, 32, 64, 94, 471}) {
+      // Uniform irradiance: a collimated beam wider than a small bare sensor.
+      Scene scene;
+      scene.spectrum = {360.0, 830.0, bins};
+      scene.camera.sensorWidthM = 0.01;
+      scene.camera.sensorHeightM = 0.01;
+      scene.camera.pixelsX = 8;
+      scene.camera.pixelsY = 8;
+      Light laser;
+      laser.type = LightType::Laser;
+      laser.label = "/lights/0";
+      laser.position = {0.0, 0.0, 0.1};
+      laser.direction = {0.0, 0.0, -1.0};
+      laser.radiusM = 0.0075;
+      laser.powerW = 1.0;
+      laser.spdLabel = named.name;
+      laser.spd = named.spd;
+      scene.lights = {laser};
+      const TracePlan plan = buildTracePlan(scene, 5);
+      DeviceRun run(device, vulkan.get(), plan, scene);
+      SweepRow timing;
+      auto [image, histogram] = run.render(scene, beams, timing);
+
+      const Spd inRange = named.spd.clipped(360.0, 830.0);
+      const auto exactXyz = spdToXyz(inRange, observer);
+      const auto exactXy = chromaticity(exactXyz);
+      ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
+      auto meanXyz = [&](bool exactColour) {
+        parameters.useExactColour = exactColour;
+        const RenderImage resolved = resolveOnCpu(histogram, parameters);
+        std::array<double, 3> sum{0, 0, 0};
+        for (size_t i = 0; i < resolved.xyz.size(); ++i) sum[i % 3] += resolved.xyz[i];
+        return sum;
+      };
+      const auto binned = meanXyz(false), perBeam = meanXyz(true);
+      auto chromaError = [&](const std::array<double, 3>& xyz) {
+        const auto xy = chromaticity(xyz);
+        return std::hypot(xy[0] - exactXy[0], xy[1] - exactXy[1]);
+      };
+      // Colours compared at equal luminance, white = D65 at that luminance.
+      auto deltaE = [&](std::array<double, 3> xyz) {
+        const double y = xyz[1];
+        std::array<double, 3> ref = exactXyz;
+        for (double& v : ref) v *= y / exactXyz[1];
+        const std::array<double, 3> white{0.95047 * y, y, 1.08883 * y};
+        return ciede2000(xyzToLab(xyz, white), xyzToLab(ref, white));
+      };
+      // The bias of binning alone: bin-averaged CMFs weighted exactly.
+      const auto weights = binAveragedCmf(observer, 360.0, 830.0, bins);
+      std::array<double, 3> expected{0, 0, 0};
+      const double binWidth = 470.0 / bins;
+      for (int b = 0; b < bins; ++b) {
+        const Spd part = inRange.clipped(360.0 + b * binWidth, 360.0 + (b + 1) * binWidth);
+        const double power = part.lambdaNm.empty() ? 0.0 : part.integral();
+        for (int k = 0; k < 3; ++k) expected[k] += power * weights[b][k];
+      }
+      ColourBinRow row;
+      row.spd = named.name;
+      row.bins = bins;
+      row.beams = beams;
+      row.binnedChromaticityError = chromaError(binned);
+      row.exactChromaticityError = chromaError(perBeam);
+      row.binnedDeltaE = deltaE(binned);
+      row.exactDeltaE = deltaE(perBeam);
+      row.expectedBinnedChromaticityError = chromaError(expected);
+      if (onRow) onRow(row);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+void writeSweepCsv(const std::filesystem::path& file, const std::vector<SweepRow>& rows) {
+  std::ofstream out(file);
+  out << "scene,device,device_name,beams,hits,wall_s,trace_device_s,resolve_device_s,beams_per_s,rel_rmse,rel_mse,"
+         "bias,de2000_mean,de2000_p99,chromaticity_error,estimated_rel_rmse,honesty,fom\n";
+  for (const auto& r : rows) {
+    const auto& m = r.metrics;
+    out << fmt::format("{},{},\"{}\",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                       r.scene, r.device, r.deviceName, r.beams, r.hits, r.wallSeconds, r.traceDeviceSeconds,
+                       r.resolveDeviceSeconds, double(r.beams) / r.wallSeconds, m.relRmse, m.relMse, m.bias,
+                       m.deltaE2000Mean, m.deltaE2000P99, m.meanChromaticityError, m.estimatedRelRmse, m.honesty, r.fom);
+  }
+}
+
+void writeColourCsv(const std::filesystem::path& file, const std::vector<ColourBinRow>& rows) {
+  std::ofstream out(file);
+  out << "spd,bins,beams,binned_chromaticity_error,expected_binned_chromaticity_error,exact_chromaticity_error,"
+         "binned_de2000,exact_de2000\n";
+  for (const auto& r : rows)
+    out << fmt::format("\"{}\",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", r.spd, r.bins, r.beams,
+                       r.binnedChromaticityError, r.expectedBinnedChromaticityError, r.exactChromaticityError,
+                       r.binnedDeltaE, r.exactDeltaE);
+}
+
+double convergenceSlope(const std::vector<SweepRow>& rows) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double(rows.size());
+  for (const auto& r : rows) {
+    const double x = std::log(double(r.beams)), y = std::log(r.metrics.relRmse);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace spectrace

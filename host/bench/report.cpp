@@ -1,0 +1,217 @@
+#include "bench/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace spectrace {
+namespace {
+
+std::string quoteShell(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+// Runs gnuplot on a script; false when gnuplot is missing or fails.
+bool runGnuplot(const std::filesystem::path& script) {
+  return std::system(("gnuplot " + quoteShell(script) + " > /dev/null 2>&1").c_str()) == 0;
+}
+
+std::vector<std::string> uniqueInOrder(const std::vector<std::string>& items) {
+  std::vector<std::string> out;
+  for (const auto& i : items)
+    if (std::find(out.begin(), out.end(), i) == out.end()) out.push_back(i);
+  return out;
+}
+
+bool plotErrorVsTime(const std::filesystem::path& dir, const BenchReport& report) {
+  std::vector<std::string> scenes, devices;
+  for (const auto& r : report.sweep) {
+    scenes.push_back(r.scene);
+    devices.push_back(r.deviceName);
+  }
+  scenes = uniqueInOrder(scenes);
+  devices = uniqueInOrder(devices);
+  const int columns = 4, rows = int((scenes.size() + columns - 1) / columns);
+  std::ofstream gp(dir / "error_vs_time.gp");
+  gp << fmt::format("set terminal pngcairo size 1600,{} font 'sans,9'\nset output '{}'\n", 380 * rows,
+                    (dir / "error_vs_time.png").string());
+  gp << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset grid\nset key bottom left\n";
+  gp << fmt::format("set multiplot layout {},{} title 'relative RMSE of pixel irradiance against wall time (trace + resolve)'\n",
+                    rows, columns);
+  for (const auto& scene : scenes) {
+    gp << fmt::format("set title '{}' noenhanced\nset xlabel 'seconds'\nset ylabel 'relative RMSE'\n", scene);
+    std::string plot = "plot ";
+    double anchorT = 0, anchorE = 0;
+    for (size_t d = 0; d < devices.size(); ++d) {
+      gp << fmt::format("$d{}_{} << EOD\n", d, &scene - scenes.data());
+      for (const auto& r : report.sweep) {
+        if (r.scene != scene || r.deviceName != devices[d] || !(r.metrics.relRmse > 0)) continue;
+        gp << fmt::format("{:.6g} {:.6g}\n", r.wallSeconds, r.metrics.relRmse);
+        if (d == 0) {
+          anchorT = r.wallSeconds;
+          anchorE = r.metrics.relRmse;
+        }
+      }
+      gp << "EOD\n";
+      plot += fmt::format("$d{}_{} with linespoints lw 2 title '{}' noenhanced, ", d, &scene - scenes.data(), devices[d]);
+    }
+    // Guide: error proportional to time^-1/2 through the first device's last point.
+    plot += fmt::format("{:.6g}*(x/{:.6g})**-0.5 with lines dt 2 lc 'gray' title 'N^{{-1/2}}'", anchorE, anchorT);
+    gp << plot << "\n";
+  }
+  gp << "unset multiplot\n";
+  gp.close();
+  return runGnuplot(dir / "error_vs_time.gp");
+}
+
+bool plotColourBins(const std::filesystem::path& dir, const BenchReport& report) {
+  if (report.colour.empty()) return false;
+  std::vector<std::string> spds;
+  for (const auto& r : report.colour) spds.push_back(r.spd);
+  spds = uniqueInOrder(spds);
+  std::ofstream gp(dir / "colour_bins.gp");
+  gp << fmt::format("set terminal pngcairo size 1000,600 font 'sans,10'\nset output '{}'\n", (dir / "colour_bins.png").string());
+  gp << "set logscale xy\nset grid\nset key outside right\nset xlabel 'wavelength bins (360-830 nm)'\n"
+        "set ylabel 'chromaticity error |Δ(x,y)| of the image mean'\nset xtics (16,32,64,94,471)\n"
+        "set title 'colour from bin-averaged CMFs (solid) vs per-beam CMFs (dashed)'\n";
+  std::string plot = "plot ";
+  for (size_t s = 0; s < spds.size(); ++s) {
+    gp << fmt::format("$c{} << EOD\n", s);
+    for (const auto& r : report.colour)
+      if (r.spd == spds[s])
+        gp << fmt::format("{} {:.6g} {:.6g}\n", r.bins, std::max(r.binnedChromaticityError, 1e-9),
+                          std::max(r.exactChromaticityError, 1e-9));
+    gp << "EOD\n";
+    plot += fmt::format("$c{0} using 1:2 with linespoints lw 2 lc {1} title '{2}, bins', "
+                        "$c{0} using 1:3 with linespoints lw 2 dt 2 lc {1} title '{2}, per beam', ",
+                        s, s + 1, spds[s]);
+  }
+  plot += "5e-5 with lines lc 'gray' dt 3 title 'target 5e-5'";
+  gp << plot << "\n";
+  gp.close();
+  return runGnuplot(dir / "colour_bins.gp");
+}
+
+}  // namespace
+
+void writeBenchReport(const std::filesystem::path& dir, const BenchReport& report) {
+  const auto data = dir / "bench";
+  std::filesystem::create_directories(data);
+  writeSweepCsv(data / "error_sweep.csv", report.sweep);
+  writeColourCsv(data / "colour_bins.csv", report.colour);
+  {
+    std::ofstream csv(data / "throughput.csv");
+    csv << "device,device_name,exact_colour,beams,hits,wall_s,trace_device_s,beams_per_s\n";
+    for (const auto& t : report.throughput)
+      csv << fmt::format("{},\"{}\",{},{},{},{:.6g},{:.6g},{:.6g}\n", t.device, t.deviceName, int(t.exactColour),
+                         t.beams, t.hits, t.wallSeconds, t.traceDeviceSeconds, double(t.beams) / t.wallSeconds);
+  }
+  const bool errorPlot = !report.sweep.empty() && plotErrorVsTime(data, report);
+  const bool colourPlot = plotColourBins(data, report);
+
+  std::ofstream md(dir / "benchmarks.md");
+  md << "# Benchmarks\n\n";
+  md << "Generated by `spectrace bench --out " << dir.string() << "` on " << report.date << ".\n\n";
+  md << "Machine: " << report.machine << ". Devices:\n\n";
+  for (const auto& d : report.devices) md << "- " << d.kind << ": " << d.name << "\n";
+  md << "\nEvery ratio below compares figures taken in this one run (the machine's timings vary by 10-20% "
+        "between runs).\n\n";
+
+  if (!report.throughput.empty()) {
+    md << "## Throughput: fixed scene (D65 disk light, bare 512x512 sensor, 64 bins)\n\n";
+    md << "| device | exact colour | beams | wall s | Mbeam/s (wall) | Mbeam/s (device time) | hit rate |\n";
+    md << "| --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& t : report.throughput)
+      md << fmt::format("| {} | {} | {} | {:.3f} | {:.2f} | {} | {:.1f}% |\n", t.deviceName, t.exactColour ? "on" : "off",
+                        t.beams, t.wallSeconds, double(t.beams) / t.wallSeconds * 1e-6,
+                        t.traceDeviceSeconds > 0 ? fmt::format("{:.2f}", double(t.beams) / t.traceDeviceSeconds * 1e-6) : "-",
+                        100.0 * double(t.hits) / double(t.beams));
+    md << "\nRatios (wall-clock beams/s):\n\n";
+    for (const auto& a : report.throughput)
+      for (const auto& b : report.throughput)
+        if (a.exactColour == b.exactColour && a.device == "gpu" && b.device == "cpu")
+          md << fmt::format("- {} : {} (exact colour {}) = {:.2f}\n", a.deviceName, b.deviceName, a.exactColour ? "on" : "off",
+                            b.wallSeconds / a.wallSeconds * double(a.beams) / double(b.beams));
+    for (const auto& a : report.throughput)
+      for (const auto& b : report.throughput)
+        if (a.deviceName == b.deviceName && a.exactColour && !b.exactColour)
+          md << fmt::format("- cost of exact colour on {}: beams/s with it : without it = {:.2f}\n", a.deviceName,
+                            (double(a.beams) / a.wallSeconds) / (double(b.beams) / b.wallSeconds));
+    md << "\n";
+  }
+
+  if (!report.sweep.empty()) {
+    md << "## Error against time on the reference scenes\n\n";
+    md << "Each scene in `scenes/reference/` has an exact answer (`host/reference`). Beams are swept over "
+          "the counts below on each device; the error is the relative RMSE of the pixel irradiance; the "
+          "dashed line is the Monte Carlo rate N^-1/2.\n\n";
+    if (errorPlot) md << "![error against time](bench/error_vs_time.png)\n\n";
+    else md << "(gnuplot was not available: no plot.)\n\n";
+
+    std::map<std::string, std::map<std::string, SweepRow>> largest;  // scene -> device -> largest-N row
+    std::vector<std::string> scenes, devices;
+    for (const auto& r : report.sweep) {
+      scenes.push_back(r.scene);
+      devices.push_back(r.deviceName);
+      auto& slot = largest[r.scene][r.deviceName];
+      if (r.beams >= slot.beams) slot = r;
+    }
+    scenes = uniqueInOrder(scenes);
+    devices = uniqueInOrder(devices);
+    md << "### Figure of merit at the largest beam count (FOM = 1 / (relMSE x seconds))\n\n| scene | beams |";
+    for (const auto& d : devices) md << " FOM " << d << " |";
+    if (devices.size() > 1) md << " ratio " << devices[0] << " : " << devices[1] << " |";
+    md << " relRMSE | estimated relRMSE | bias | ΔE2000 mean / p99 | chromaticity error |\n| --- | ---: |";
+    for (size_t i = 0; i < devices.size() + (devices.size() > 1 ? 1 : 0); ++i) md << " ---: |";
+    md << " ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& s : scenes) {
+      const SweepRow& first = largest[s][devices[0]];
+      md << fmt::format("| {} | {:.0e} |", s, double(first.beams));
+      for (const auto& d : devices) md << fmt::format(" {:.4g} |", largest[s][d].fom);
+      if (devices.size() > 1) md << fmt::format(" {:.2f} |", largest[s][devices[0]].fom / largest[s][devices[1]].fom);
+      const auto& m = first.metrics;
+      md << fmt::format(" {:.3g} | {:.3g} | {:+.2e} | {:.3f} / {:.3f} | {:.2e} |\n", m.relRmse, m.estimatedRelRmse, m.bias,
+                        m.deltaE2000Mean, m.deltaE2000P99, m.meanChromaticityError);
+    }
+    md << "\n(The error columns are the first device's; the devices trace the same beams.)\n\n";
+
+    md << "### Convergence slope of relRMSE over the three largest beam counts (N^-1/2 is -0.5)\n\n";
+    md << "| scene |";
+    for (const auto& d : devices) md << " " << d << " |";
+    md << "\n| --- |";
+    for (size_t i = 0; i < devices.size(); ++i) md << " ---: |";
+    md << "\n";
+    for (const auto& s : scenes) {
+      md << "| " << s << " |";
+      for (const auto& d : devices) {
+        std::vector<SweepRow> rows;
+        for (const auto& r : report.sweep)
+          if (r.scene == s && r.deviceName == d) rows.push_back(r);
+        std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.beams < b.beams; });
+        if (rows.size() > 3) rows.erase(rows.begin(), rows.end() - 3);
+        md << fmt::format(" {:.3f} |", convergenceSlope(rows));
+      }
+      md << "\n";
+    }
+    md << "\nAll rows, with device times split into trace and resolve: [bench/error_sweep.csv](bench/error_sweep.csv).\n\n";
+  }
+
+  if (!report.colour.empty()) {
+    md << "## Colour error from binning\n\n";
+    md << "Uniform irradiance of each SPD, colour of the image mean from the histogram's bin-averaged CMFs "
+          "against colour from each beam's own CMF values (the per-pixel exact-colour sums), both against "
+          "the exact integral of SPD x CMF. \"expected\" is the bias of binning computed without noise.\n\n";
+    if (colourPlot) md << "![colour error against bins](bench/colour_bins.png)\n\n";
+    md << "| SPD | bins | beams | chromaticity error, bins (expected) | chromaticity error, per beam | ΔE2000 bins | ΔE2000 per beam |\n";
+    md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& r : report.colour)
+      md << fmt::format("| {} | {} | {:.0e} | {:.2e} ({:.2e}) | {:.2e} | {:.4f} | {:.4f} |\n", r.spd, r.bins, double(r.beams),
+                        r.binnedChromaticityError, r.expectedBinnedChromaticityError, r.exactChromaticityError,
+                        r.binnedDeltaE, r.exactDeltaE);
+    md << "\n";
+  }
+}
+
+}  // namespace spectrace

@@ -1,0 +1,69 @@
+// Every reference scene (scenes/reference/, exact answers from
+// host/reference) rendered on the Vulkan device at a modest beam count. The
+// error bounds come from the render's own estimated standard errors, not
+// from tuned constants:
+// - honesty: the measured relative RMSE agrees with the estimated one within
+//   a factor of 1.5;
+// - bias: the mean signed relative error is within 5 sigma, where sigma is
+//   the standard error of that mean, sqrt(sum of estimated relative
+//   variances) / pixels;
+// - convergence: relRMSE over three beam counts falls with slope -0.5 +- 0.1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "bench/error_bench.h"
+
+namespace spectrace {
+namespace {
+
+std::string sceneFile(const std::string& name) {
+  return std::string(SPECTRACE_SOURCE_DIR) + "/scenes/reference/" + name + ".json";
+}
+
+BenchDevice vulkanDevice() {
+  const auto devices = benchDevices("gpu");
+  if (devices.empty()) throw std::runtime_error("no Vulkan device");
+  return devices.front();
+}
+
+class ReferenceScene : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ReferenceScene, ErrorMatchesItsEstimateAndHasNoBias) {
+  SweepOptions options;
+  options.scenes = {sceneFile(GetParam())};
+  options.beamCounts = {4'000'000};
+  const auto rows = runErrorSweep({vulkanDevice()}, options);
+  ASSERT_EQ(rows.size(), 1u);
+  const ErrorMetrics& m = rows[0].metrics;
+  std::printf("%s: relRMSE %.4g, estimated %.4g (honesty %.3f), bias %+.3e over %zu pixels, dE2000 %.3f\n", GetParam(),
+              m.relRmse, m.estimatedRelRmse, m.honesty, m.bias, m.pixels, m.deltaE2000Mean);
+  ASSERT_GT(m.pixels, 0u);
+  ASSERT_EQ(m.pixelsWithoutEstimate, 0u) << "every compared pixel needs counts at this beam count";
+  EXPECT_GT(m.honesty, 1.0 / 1.5);
+  EXPECT_LT(m.honesty, 1.5);
+  // Standard error of the mean relative error of independent pixels.
+  const double biasSigma = m.estimatedRelRmse / std::sqrt(double(m.pixels));
+  EXPECT_LE(std::abs(m.bias), 5.0 * biasSigma) << "bias " << m.bias << ", sigma " << biasSigma;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllReferenceScenes, ReferenceScene,
+                         ::testing::Values("point_on_axis", "point_off_axis", "disk_on_axis", "disk_off_axis",
+                                           "furnace", "uniform_d65", "uniform_a", "uniform_f2", "uniform_f11",
+                                           "uniform_led_b3", "laser_532", "pinhole_rect"));
+
+TEST(ReferenceConvergence, SlopeIsMinusOneHalf) {
+  for (const char* name : {"disk_off_axis", "uniform_f11"}) {
+    SweepOptions options;
+    options.scenes = {sceneFile(name)};
+    options.beamCounts = {250'000, 1'000'000, 4'000'000};
+    const auto rows = runErrorSweep({vulkanDevice()}, options);
+    const double slope = convergenceSlope(rows);
+    std::printf("%s: slope %.3f\n", name, slope);
+    EXPECT_NEAR(slope, -0.5, 0.1) << name;
+  }
+}
+
+}  // namespace
+}  // namespace spectrace
