@@ -471,7 +471,12 @@ TEST(GeometryNumericsAngles, BeamsParallelToTheSensorNeverCount) {
       // Origins from 1 mm above to 1 mm below the sensor plane.
       laserLight(worldPoint(frame, {-1e-3, 0.0, 0.0}), worldDirection(frame, {1.0, 0.0, 0.0}), 1e-3),
       laserLight(worldPoint(frame, {0.0, 1e-3, 1e-6}), worldDirection(frame, {0.0, -1.0, 0.0}), 1e-6)};
-  const TracePlan plan = buildTracePlan(scene, 23);
+  // By default such lights are never sampled: none can reach the sensor.
+  EXPECT_THROW(buildTracePlan(scene, 23), SceneError);
+  // Traced anyway, the shader maths must count nothing and never divide by 0.
+  TracePlanOptions traceAll;
+  traceAll.skipUnreachableLights = false;
+  const TracePlan plan = buildTracePlan(scene, 23, traceAll);
   for (const auto& record : plan.lights) {
     ASSERT_TRUE(finiteRecord(record));
     ASSERT_EQ(record.axis.z, 0.0f);
@@ -506,7 +511,10 @@ TEST(GeometryNumericsAngles, LightsBehindTheSensorNeverCount) {
   pinhole.lights.push_back(pointLight({0.0, 0.0, 0.01}, 1.0, makeLineSpd(500.0)));
   for (const Scene* scene : {&bare, &pinhole}) {
     const char* name = scene == &bare ? "behind a bare sensor" : "behind a pinhole";
-    const TracePlan plan = buildTracePlan(*scene, 24);
+    EXPECT_THROW(buildTracePlan(*scene, 24), SceneError) << name << ": the default skips every light here";
+    TracePlanOptions traceAll;
+    traceAll.skipUnreachableLights = false;
+    const TracePlan plan = buildTracePlan(*scene, 24, traceAll);
     const GpuRun run = traceOnGpu(*scene, plan, 0, kBeams);
     EXPECT_EQ(run.histogram.total(), 0u) << name;
     expectFiniteImage(run.image, name);

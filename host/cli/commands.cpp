@@ -73,7 +73,8 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   if (!command.quiet) {
     for (const auto& light : result.plan.summaries) {
       if (!light.traced)
-        std::fprintf(stderr, "spectrace: note: %s is not traced: no power inside the spectrum range\n", light.label.c_str());
+        std::fprintf(stderr, "spectrace: note: %s is never sampled: %s\n", light.label.c_str(),
+                     light.notTracedBecause.c_str());
     }
   }
   const std::string device = fmt::format("{} ({})", result.deviceName, result.deviceKind);

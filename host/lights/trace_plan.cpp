@@ -1,6 +1,9 @@
 #include "lights/trace_plan.h"
 
+#include <algorithm>
 #include <cmath>
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
@@ -19,6 +22,57 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
   const double a = -1.0 / (sign + n.z);
   const double b = n.x * n.y * a;
   return {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+}
+
+// Why a light (in the camera frame) can never put a beam on the sensor, or
+// "" when it might. Counted beams start beyond the plane z = D (the sensor,
+// or the aperture of a pinhole camera) and travel towards -z; the test is
+// conservative: it only rejects what provably contributes nothing.
+std::string unreachableBecause(const Light& light, const glm::dvec3& position, const glm::dvec3& axis,
+                               const glm::dvec3& tangent, const glm::dvec3& bitangent, const Camera& camera) {
+  const double planeZ = camera.pinhole ? camera.pinhole->distanceM : 0.0;
+  const char* plane = camera.pinhole ? "the pinhole's aperture plane" : "the sensor plane";
+  // Largest z any emission point reaches.
+  double extent = 0.0;
+  switch (light.type) {
+    case LightType::Disk:
+    case LightType::Laser: extent = light.radiusM * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z)); break;
+    case LightType::Rect: extent = 0.5 * (light.sizeM.x * std::abs(tangent.z) + light.sizeM.y * std::abs(bitangent.z)); break;
+    default: break;
+  }
+  if (!(position.z + extent > planeZ)) return fmt::format("it lies behind {}", plane);
+  switch (light.type) {
+    case LightType::Spot: {
+      // Some direction in the cone points towards -z iff the angle between
+      // the axis and -z is below 90 degrees plus the half angle.
+      const double angle = std::acos(std::clamp(-axis.z, -1.0, 1.0));
+      if (!(angle < M_PI / 2 + light.coneHalfAngleDeg * M_PI / 180.0)) return "its cone points away from the camera";
+      break;
+    }
+    case LightType::Disk:
+    case LightType::Rect:
+      if (!(axis.z < 1.0)) return "it faces away from the camera";
+      break;
+    case LightType::Laser: {
+      if (!(axis.z < 0.0)) return "its beam points away from the camera";
+      // The beam's footprint in the plane z = planeZ: the disk's centre moved
+      // along the axis, inside a circle of radius R / |axis.z| (the
+      // ellipse's semi-major axis).
+      const double t = (position.z - planeZ) / -axis.z;
+      const glm::dvec2 centre(position.x + t * axis.x, position.y + t * axis.y);
+      const double reach = light.radiusM / -axis.z;
+      if (camera.pinhole) {
+        if (!(glm::length(centre) < reach + camera.pinhole->radiusM)) return "its beam misses the pinhole";
+      } else {
+        const glm::dvec2 half(0.5 * camera.sensorWidthM, 0.5 * camera.sensorHeightM);
+        const glm::dvec2 outside = glm::max(glm::abs(centre) - half, glm::dvec2(0.0));
+        if (!(glm::length(outside) < reach)) return "its beam misses the sensor";
+      }
+      break;
+    }
+    case LightType::Point: break;
+  }
+  return "";
 }
 
 std::string sceneName(const Scene& scene) {
@@ -50,7 +104,17 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
     const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
     summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
     summary.tracedPowerW = light.powerW * summary.inRangeShare;
-    if (summary.tracedPowerW > 0.0) {
+    const glm::dvec3 axis = glm::normalize(frame.directionToLocal(light.direction));
+    glm::dvec3 tangent = light.type == LightType::Rect ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
+    tangent = glm::normalize(tangent - axis * glm::dot(tangent, axis));
+    const glm::dvec3 bitangent = glm::cross(axis, tangent);
+    const glm::dvec3 position = frame.pointToLocal(light.position);
+    if (!(summary.tracedPowerW > 0.0)) {
+      summary.notTracedBecause = light.powerW > 0.0 ? "it has no power inside the spectrum range" : "its power is zero";
+    } else if (options.skipUnreachableLights) {
+      summary.notTracedBecause = unreachableBecause(light, position, axis, tangent, bitangent, camera);
+    }
+    if (summary.notTracedBecause.empty()) {
       summary.traced = true;
       SpectralTable table = buildSpectralTable(clipped);
       device::LightRecord record{};
@@ -59,11 +123,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
       record.spectralCount = uint32_t(table.intervals.size());
       plan.intervals.insert(plan.intervals.end(), table.intervals.begin(), table.intervals.end());
 
-      const glm::dvec3 axis = glm::normalize(frame.directionToLocal(light.direction));
-      glm::dvec3 tangent = light.type == LightType::Rect ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
-      tangent = glm::normalize(tangent - axis * glm::dot(tangent, axis));
-      const glm::dvec3 bitangent = glm::cross(axis, tangent);
-      record.position = toFloat(frame.pointToLocal(light.position));
+      record.position = toFloat(position);
       record.axis = toFloat(axis);
       record.tangent = toFloat(tangent);
       record.bitangent = toFloat(bitangent);
@@ -87,11 +147,14 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
       selectWeights.push_back(summary.tracedPowerW);
       plan.tracedPowerW += summary.tracedPowerW;
     }
+    if (!summary.traced) summary.tracedPowerW = 0.0;
     plan.summaries.push_back(summary);
   }
-  if (plan.lights.empty())
-    throw SceneError(fmt::format("{}: /lights: no light emits power inside the spectrum range {}-{} nm",
-                                 sceneName(scene), range.minNm, range.maxNm));
+  if (plan.lights.empty()) {
+    std::string why;
+    for (const auto& s : plan.summaries) why += fmt::format("\n  {}: {}", s.label, s.notTracedBecause);
+    throw SceneError(fmt::format("{}: /lights: no light can put a beam on the sensor:{}", sceneName(scene), why));
+  }
   const auto lows = quantizeCdf(selectWeights);
   for (size_t i = 0; i < lows.size(); ++i) plan.lights[i].selectCdfLow = lows[i];
 

@@ -16,7 +16,8 @@ struct LightSummary {
   double powerW = 0.0;     // as given
   double inRangeShare = 0.0;  // share of the emission inside the spectrum range
   double tracedPowerW = 0.0;  // powerW * inRangeShare
-  bool traced = false;        // false: never sampled (no power in range)
+  bool traced = false;        // false: never sampled
+  std::string notTracedBecause;  // why, when not traced
 };
 
 struct TracePlan {
@@ -43,6 +44,10 @@ struct TracePlanOptions {
   // Accumulate each counted beam's own CMF values per pixel (exact colour
   // whatever the bin count); otherwise colour comes from bin-averaged CMFs.
   bool exactColour = true;
+  // Never sample lights that provably cannot reach the sensor (behind it or
+  // the aperture, facing away, a collimated beam that misses). Off: trace
+  // them anyway (the unskipped reference path).
+  bool skipUnreachableLights = true;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be
