@@ -40,12 +40,7 @@ using testing::surfaceLight;
 using vk_util::Buffer;
 using vk_util::MemoryPlacement;
 
-// A test-property key safe for gtest's XML output.
-std::string propertyKey(const std::string& text) {
-  std::string key;
-  for (char c : text) key += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return key;
-}
+using testing::propertyKey;
 
 constexpr double kSigmas = 5.0;
 constexpr uint64_t k2To32 = uint64_t(1) << 32;

@@ -39,12 +39,7 @@ namespace {
 using testing::pointLight;
 using testing::surfaceLight;
 
-// A test-property key safe for gtest's XML output.
-std::string propertyKey(const std::string& text) {
-  std::string key;
-  for (char c : text) key += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return key;
-}
+using testing::propertyKey;
 
 constexpr double kSigmas = 5.0;
 constexpr double kMinExpected = 25.0;  // below this a pixel joins the pooled cell

@@ -15,6 +15,7 @@
 #include "render/gpu_tracer.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_builders.h"
 #include "vulkan/context.h"
 
 namespace spectrace {
@@ -156,21 +157,9 @@ std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t 
   for (const auto& named : spds) {
     for (int bins : {16, 32, 64, 94, 471}) {
       // Uniform irradiance: a collimated beam wider than a small bare sensor.
-      Scene scene;
-      scene.spectrum = {360.0, 830.0, bins};
-      scene.camera.sensorWidthM = 0.01;
-      scene.camera.sensorHeightM = 0.01;
-      scene.camera.pixelsX = 8;
-      scene.camera.pixelsY = 8;
-      Light laser;
-      laser.type = LightType::Laser;
-      laser.label = "/lights/0";
-      laser.position = {0.0, 0.0, 0.1};
-      laser.direction = {0.0, 0.0, -1.0};
+      Scene scene = bareSensorScene(0.01, 0.01, 8, 8, bins);
+      Light laser = surfaceLight(LightType::Laser, {0.0, 0.0, 0.1}, {0.0, 0.0, -1.0}, 1.0, named.spd, named.name);
       laser.radiusM = 0.0075;
-      laser.powerW = 1.0;
-      laser.spdLabel = named.name;
-      laser.spd = named.spd;
       scene.lights = {laser};
       const TracePlan plan = buildTracePlan(scene, 5);
       DeviceRun run(device, vulkan.get(), plan, scene);
@@ -189,6 +178,17 @@ std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t 
         return sum;
       };
       const auto binned = meanXyz(false), perBeam = meanXyz(true);
+      double sumX = 0, sumY = 0, sumXX = 0, sumYY = 0;
+      const size_t pixels = image.irradiance.size();
+      for (size_t p = 0; p < pixels; ++p) {
+        const auto xy = chromaticity({image.xyz[p * 3], image.xyz[p * 3 + 1], image.xyz[p * 3 + 2]});
+        sumX += xy[0];
+        sumY += xy[1];
+        sumXX += xy[0] * xy[0];
+        sumYY += xy[1] * xy[1];
+      }
+      const double n = double(pixels);
+      const double varX = (sumXX - sumX * sumX / n) / (n - 1), varY = (sumYY - sumY * sumY / n) / (n - 1);
       auto chromaError = [&](const std::array<double, 3>& xyz) {
         const auto xy = chromaticity(xyz);
         return std::hypot(xy[0] - exactXy[0], xy[1] - exactXy[1]);
@@ -219,6 +219,7 @@ std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t 
       row.binnedDeltaE = deltaE(binned);
       row.exactDeltaE = deltaE(perBeam);
       row.expectedBinnedChromaticityError = chromaError(expected);
+      row.chromaticitySigma = std::sqrt((varX + varY) / n);
       if (onRow) onRow(row);
       rows.push_back(row);
     }
@@ -242,11 +243,11 @@ void writeSweepCsv(const std::filesystem::path& file, const std::vector<SweepRow
 void writeColourCsv(const std::filesystem::path& file, const std::vector<ColourBinRow>& rows) {
   std::ofstream out(file);
   out << "spd,bins,beams,binned_chromaticity_error,expected_binned_chromaticity_error,exact_chromaticity_error,"
-         "binned_de2000,exact_de2000\n";
+         "chromaticity_sigma,binned_de2000,exact_de2000\n";
   for (const auto& r : rows)
-    out << fmt::format("\"{}\",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", r.spd, r.bins, r.beams,
+    out << fmt::format("\"{}\",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", r.spd, r.bins, r.beams,
                        r.binnedChromaticityError, r.expectedBinnedChromaticityError, r.exactChromaticityError,
-                       r.binnedDeltaE, r.exactDeltaE);
+                       r.chromaticitySigma, r.binnedDeltaE, r.exactDeltaE);
 }
 
 double convergenceSlope(const std::vector<SweepRow>& rows) {

@@ -53,6 +53,10 @@ struct ColourBinRow {
   double binnedChromaticityError = 0.0, exactChromaticityError = 0.0;   // of the image mean
   double binnedDeltaE = 0.0, exactDeltaE = 0.0;                         // CIEDE2000 of the image mean
   double expectedBinnedChromaticityError = 0.0;  // from exact integration of the bin-averaged CMF (no noise)
+  // Monte Carlo standard error of the image mean's chromaticity, from the
+  // scatter of the (independent, equally lit) pixels: an error below ~3x
+  // this is noise, not bias.
+  double chromaticitySigma = 0.0;
 };
 std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t beams,
                                             const std::function<void(const ColourBinRow&)>& onRow = {});

@@ -204,12 +204,12 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
           "against colour from each beam's own CMF values (the per-pixel exact-colour sums), both against "
           "the exact integral of SPD x CMF. \"expected\" is the bias of binning computed without noise.\n\n";
     if (colourPlot) md << "![colour error against bins](bench/colour_bins.png)\n\n";
-    md << "| SPD | bins | beams | chromaticity error, bins (expected) | chromaticity error, per beam | ΔE2000 bins | ΔE2000 per beam |\n";
-    md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    md << "| SPD | bins | beams | chromaticity error, bins (expected) | chromaticity error, per beam | noise σ | ΔE2000 bins | ΔE2000 per beam |\n";
+    md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& r : report.colour)
-      md << fmt::format("| {} | {} | {:.0e} | {:.2e} ({:.2e}) | {:.2e} | {:.4f} | {:.4f} |\n", r.spd, r.bins, double(r.beams),
-                        r.binnedChromaticityError, r.expectedBinnedChromaticityError, r.exactChromaticityError,
-                        r.binnedDeltaE, r.exactDeltaE);
+      md << fmt::format("| {} | {} | {:.0e} | {:.2e} ({:.2e}) | {:.2e} | {:.1e} | {:.4f} | {:.4f} |\n", r.spd, r.bins,
+                        double(r.beams), r.binnedChromaticityError, r.expectedBinnedChromaticityError,
+                        r.exactChromaticityError, r.chromaticitySigma, r.binnedDeltaE, r.exactDeltaE);
     md << "\n";
   }
 }

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_builders.h"
 
 namespace spectrace::cli {
 namespace {
@@ -20,22 +21,10 @@ namespace {
 // The fixed throughput scene: one D65 disk light 0.1 m in front of a bare
 // 512x512 sensor, 64 bins over 360-830 nm.
 Scene throughputScene() {
-  Scene scene;
-  scene.spectrum = {360.0, 830.0, 64};
-  scene.camera.sensorWidthM = 0.1;
-  scene.camera.sensorHeightM = 0.1;
-  scene.camera.pixelsX = 512;
-  scene.camera.pixelsY = 512;
-  Light disk;
-  disk.type = LightType::Disk;
-  disk.label = "/lights/0";
-  disk.position = {0.0, 0.0, 0.1};
-  disk.direction = {0.0, 0.0, -1.0};
+  Scene scene = bareSensorScene(0.1, 0.1, 512, 512, 64);
+  Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.1}, {0.0, 0.0, -1.0}, 1.0, *cieIlluminant("D65"), "D65");
   disk.radiusM = 0.05;
-  disk.powerW = 1.0;
-  disk.spdLabel = "D65";
-  disk.spd = *cieIlluminant("D65");
-  scene.lights.push_back(disk);
+  scene.lights = {disk};
   return scene;
 }
 
@@ -135,11 +124,12 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
 
   if (command.colour) {
     fmt::print("\nColour error from binning ({} beams per render, on {})\n", command.colourBeams, report.devices[0].name);
-    fmt::print("{:<12} {:>5} {:>14} {:>14} {:>14} {:>10} {:>10}\n", "SPD", "bins", "Δxy bins", "(expected)", "Δxy per beam",
-               "ΔE bins", "ΔE beam");
+    fmt::print("{:<12} {:>5} {:>14} {:>14} {:>14} {:>10} {:>10} {:>10}\n", "SPD", "bins", "Δxy bins", "(expected)",
+               "Δxy per beam", "noise σ", "ΔE bins", "ΔE beam");
     report.colour = runColourBinStudy(report.devices[0], command.colourBeams, [](const ColourBinRow& r) {
-      fmt::print("{:<12} {:>5} {:>14.3e} {:>14.3e} {:>14.3e} {:>10.4f} {:>10.4f}\n", r.spd, r.bins, r.binnedChromaticityError,
-                 r.expectedBinnedChromaticityError, r.exactChromaticityError, r.binnedDeltaE, r.exactDeltaE);
+      fmt::print("{:<12} {:>5} {:>14.3e} {:>14.3e} {:>14.3e} {:>10.1e} {:>10.4f} {:>10.4f}\n", r.spd, r.bins,
+                 r.binnedChromaticityError, r.expectedBinnedChromaticityError, r.exactChromaticityError,
+                 r.chromaticitySigma, r.binnedDeltaE, r.exactDeltaE);
     });
   }
 

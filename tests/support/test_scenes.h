@@ -2,39 +2,23 @@
 // Scenes built in code for tests, and a shared Vulkan context.
 #include <memory>
 
-#include "scene/scene.h"
-#include "spectrum/spd.h"
+#include <cctype>
+#include <string>
+
+#include "scene/scene_builders.h"
 #include "vulkan/context.h"
 
 namespace spectrace::testing {
 
-// A bare sensor at the origin looking along +z.
-inline Scene bareSensorScene(double widthM, double heightM, int pixelsX, int pixelsY, int bins = 32) {
-  Scene scene;
-  scene.spectrum = {360.0, 830.0, bins};
-  scene.camera.sensorWidthM = widthM;
-  scene.camera.sensorHeightM = heightM;
-  scene.camera.pixelsX = pixelsX;
-  scene.camera.pixelsY = pixelsY;
-  return scene;
-}
+using spectrace::bareSensorScene;
+using spectrace::pointLight;
+using spectrace::surfaceLight;
 
-inline Light pointLight(glm::dvec3 position, double powerW, Spd spd) {
-  Light light;
-  light.type = LightType::Point;
-  light.label = "/lights/point";
-  light.position = position;
-  light.powerW = powerW;
-  light.spdLabel = "test";
-  light.spd = std::move(spd);
-  return light;
-}
-
-inline Light surfaceLight(LightType type, glm::dvec3 center, glm::dvec3 normal, double powerW, Spd spd) {
-  Light light = pointLight(center, powerW, std::move(spd));
-  light.type = type;
-  light.direction = normal;
-  return light;
+// A test-property key safe for gtest's XML output.
+inline std::string propertyKey(const std::string& text) {
+  std::string key;
+  for (char c : text) key += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return key;
 }
 
 // One Vulkan context per test program (device creation is slow on lavapipe).
