@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
@@ -83,6 +84,10 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   if (!command.quiet) {
     std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,
                  result.wallSeconds, double(result.beamsTraced) / result.wallSeconds * 1e-6, result.deviceName.c_str());
+    const auto& counts = result.histogram.counts;
+    const uint64_t largest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
+    std::fprintf(stderr, "spectrace: %llu beams counted (exact); the largest pixel-bin holds %llu\n",
+                 (unsigned long long)result.histogram.total(), (unsigned long long)largest);
     std::fprintf(stderr, "spectrace: wrote %s%s\n", output.c_str(), command.png ? (" and " + png.string()).c_str() : "");
   }
   if (result.beamsTraced < options.beams) {
