@@ -24,6 +24,17 @@
 #define FN
 #endif
 
+// Feature switches. The trace shader defines them from specialisation
+// constants, so a pipeline built for a scene compiles out what the scene
+// lacks; these defaults (everything decided at run time) are the general
+// pipeline's, and the CPU reference's.
+#ifndef SPECTRACE_LIGHT_ENABLED
+#define SPECTRACE_LIGHT_ENABLED(type) true
+#endif
+#ifndef SPECTRACE_PINHOLE
+#define SPECTRACE_PINHOLE(apertureDistance) ((apertureDistance) > 0.0f)
+#endif
+
 // (x >> 8) * 2^-24: exact in float32, in [0, 1 - 2^-24].
 FN float uniformFromWord(uint x) { return float(x >> 8) * (1.0f / 16777216.0f); }
 
@@ -145,28 +156,29 @@ FN vec3 toFrame(vec3 local, vec3 tangent, vec3 bitangent, vec3 axis) {
 FN void emitBeam(uint type, vec3 position, vec3 axis, vec3 tangent, vec3 bitangent,
                  float param0, float param1, float ou, float ov, float du, float dv,
                  OUT(vec3) origin, OUT(vec3) direction) {
-  if (type == kLightPoint) {
+  origin = position;
+  direction = axis;
+  if (SPECTRACE_LIGHT_ENABLED(kLightPoint) && type == kLightPoint) {
     origin = position;
     direction = sampleSphere(du, dv);
-  } else if (type == kLightSpot) {
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && type == kLightSpot) {
     origin = position;
     direction = toFrame(sampleCone(du, dv, param0), tangent, bitangent, axis);
-  } else if (type == kLightDisk) {
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) {
     vec2 p = sampleDisk(ou, ov, param0);
     PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
     origin = o;
     direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
-  } else if (type == kLightRect) {
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightRect) && type == kLightRect) {
     PRECISE float x = (ou - 0.5f) * param0;
     PRECISE float y = (ov - 0.5f) * param1;
     PRECISE vec3 o = position + tangent * x + bitangent * y;
     origin = o;
     direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
-  } else {  // laser: collimated, uniform disk cross-section
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightLaser)) {  // laser: collimated, uniform disk cross-section
     vec2 p = sampleDisk(ou, ov, param0);
     PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
     origin = o;
-    direction = axis;
   }
 }
 
@@ -182,7 +194,7 @@ FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetr
   if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
   PRECISE float hx;
   PRECISE float hy;
-  bool flip = apertureDistance > 0.0f;
+  bool flip = SPECTRACE_PINHOLE(apertureDistance);
   if (flip) {
     PRECISE float ta = (origin.z - apertureDistance) / -direction.z;
     PRECISE float ax = origin.x + ta * direction.x;

@@ -6,6 +6,10 @@
 #ifndef SPECTRACE_BEAM_TRACE_H
 #define SPECTRACE_BEAM_TRACE_H
 
+#ifndef SPECTRACE_SELECT_LIGHT
+#define SPECTRACE_SELECT_LIGHT (constants.lightCount > 1u)
+#endif
+
 SPECTRACE_CDF_SEARCH(searchLight, readLightCdf)
 SPECTRACE_CDF_SEARCH(searchSpectralInterval, readSpectralCdf)
 
@@ -55,7 +59,7 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float)
   // Light in proportion to its traced power, then interval in proportion to
   // its power: both exact integer CDFs over 64-bit uniforms.
   uint lightIndex = 0u;
-  if (constants.lightCount > 1u) {
+  if (SPECTRACE_SELECT_LIGHT) {
     uvec4 select = philox4x32(constants.seed, beamIndex, kRngBlockLight);
     lightIndex = searchLight(0u, constants.lightCount, joinWords(select.x, select.y));
   }

@@ -39,6 +39,13 @@ SPECTRACE_CONSTANT uint kMaxHistogramChunks = 8;
 
 // Specialisation constant ids.
 SPECTRACE_CONSTANT uint kSpecWorkgroupSize = 0;
+// Trace pass, scene specialisation: a bit per light type present; whether to
+// choose among lights; bare (0) / pinhole (1) / decide at run time (2);
+// exact colour off (0) / on (1) / at run time (2).
+SPECTRACE_CONSTANT uint kSpecLightTypes = 2;
+SPECTRACE_CONSTANT uint kSpecSelectLight = 3;
+SPECTRACE_CONSTANT uint kSpecPinhole = 4;
+SPECTRACE_CONSTANT uint kSpecExactColour = 5;
 // Trace pass: when 1, write each beam's (pixel, bin) to the beam records
 // instead of counting it (for beam-by-beam CPU/GPU comparison).
 SPECTRACE_CONSTANT uint kSpecRecordBeams = 1;

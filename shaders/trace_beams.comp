@@ -10,6 +10,15 @@
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint recordBeams = 0u;
+// Scene specialisation (device_shared.h: kSpec*); the defaults give the
+// general pipeline, which decides everything at run time.
+layout(constant_id = 2) const uint enabledLightTypes = 31u;  // bit per light type
+layout(constant_id = 3) const uint selectLight = 1u;         // 0: one light, no choice
+layout(constant_id = 4) const uint pinholeMode = 2u;         // 0 bare, 1 pinhole, 2 run time
+layout(constant_id = 5) const uint exactColourMode = 2u;     // 0 off, 1 on, 2 run time
+#define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
+#define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
+#define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
 
 layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
   TraceConstants constants;
@@ -71,7 +80,7 @@ void main() {
     uint chunk = pixel / constants.pixelsPerChunk;
     uint base = (pixel - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
     addCount(chunk, base + bin, 1ul);
-    if (constants.exactColour != 0u) {
+    if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
       vec3 cmf = cmfAtWavelength(lambda);
       addCount(chunk, base + constants.bins, colourFixedPoint(cmf.x, spareUniform));
       addCount(chunk, base + constants.bins + 1u, colourFixedPoint(cmf.y, spareUniform));

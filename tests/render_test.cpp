@@ -117,3 +117,40 @@ TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
 
 }  // namespace
 }  // namespace spectrace
+
+namespace spectrace {
+namespace {
+
+// A pipeline specialised to the scene (absent light types, light choice,
+// pinhole, exact colour compiled out) gives bit-identical results to the
+// general pipeline.
+TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
+  std::vector<Scene> scenes;
+  scenes.push_back(smallScene());  // disk + point, bare
+  Scene laser = bareSensorScene(0.01, 0.01, 8, 8, 16);
+  Light beam = surfaceLight(LightType::Laser, {0.001, 0.0, 0.05}, {0, 0, -1}, 1.0, makeLineSpd(532.0));
+  beam.radiusM = 0.003;
+  laser.lights = {beam};  // one light, one type
+  scenes.push_back(laser);
+  Scene pinhole = smallScene();
+  pinhole.camera.pinhole = Pinhole{0.002, 0.001};
+  for (auto& l : pinhole.lights) l.position.z += 0.01;
+  scenes.push_back(pinhole);
+  for (bool exactColour : {true, false}) {
+    for (const Scene& scene : scenes) {
+      RenderOptions options;
+      options.beams = 1'000'000;
+      options.device = DeviceChoice::Gpu;
+      options.exactColour = exactColour;
+      const RenderResult specialised = render(scene, options);
+      options.specialise = false;
+      const RenderResult general = render(scene, options);
+      EXPECT_GT(general.histogram.total(), 1000u);
+      expectSameHistogram(specialised.histogram, general.histogram, "specialised vs general");
+      expectSameImage(specialised.image, general.image, "specialised vs general");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spectrace

@@ -16,11 +16,19 @@ struct ThroughputRow {
   double wallSeconds = 0.0, traceDeviceSeconds = 0.0;
 };
 
+// Beams/s of the general and the scene-specialised trace pipeline.
+struct SpecialisationRow {
+  std::string scene, deviceName;
+  uint64_t beams = 0;
+  double generalSeconds = 0.0, specialisedSeconds = 0.0;  // device time of the trace pass
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
   std::vector<BenchDevice> devices;
   std::vector<ThroughputRow> throughput;
+  std::vector<SpecialisationRow> specialisation;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 #include <vector>
@@ -81,6 +82,37 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
   return rows;
 }
 
+// General against specialised trace pipelines, device time, same run.
+std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>& devices,
+                                                 const std::filesystem::path& scenesDir, const std::atomic<bool>& cancel) {
+  std::vector<std::pair<std::string, Scene>> scenes = {{"throughput scene", throughputScene()}};
+  for (const char* name : {"default", "reference/point_on_axis", "reference/disk_on_axis", "reference/uniform_d65",
+                           "reference/laser_532", "reference/pinhole_rect"})
+    scenes.emplace_back(name, loadScene(scenesDir / (std::string(name) + ".json")));
+  std::vector<SpecialisationRow> rows;
+  fmt::print("\nSpecialised pipelines (device time of the trace pass)\n");
+  fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}\n", "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
+  for (const auto& device : devices) {
+    if (device.kind != "gpu") continue;
+    for (const auto& [name, scene] : scenes) {
+      SpecialisationRow row{name, device.name, uint64_t(1) << 24, 0.0, 0.0};
+      for (bool specialise : {false, true}) {
+        RenderOptions options;
+        options.device = DeviceChoice::Gpu;
+        options.beams = row.beams;
+        options.specialise = specialise;
+        options.cancel = &cancel;
+        const RenderResult result = render(scene, options);
+        (specialise ? row.specialisedSeconds : row.generalSeconds) = result.traceDeviceSeconds;
+      }
+      fmt::print("{:<26} {:>10} {:>16.2f} {:>20.2f} {:>8.2f}\n", name, row.beams, double(row.beams) / row.generalSeconds * 1e-6,
+                 double(row.beams) / row.specialisedSeconds * 1e-6, row.generalSeconds / row.specialisedSeconds);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
   // A fixed list, so the benchmark's rows are comparable between runs.
   std::vector<std::string> scenes;
@@ -100,12 +132,13 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   if (report.devices.empty()) throw std::runtime_error("bench: no device matches --device " + command.devices);
   if (command.throughput) report.throughput = runThroughput(command, report.devices, cancel);
 
+  std::filesystem::path dir = command.scenesDir;
+  if (dir.empty()) {
+    dir = "scenes/reference";
+    if (!std::filesystem::exists(dir)) dir = std::filesystem::path(SPECTRACE_SOURCE_DIR) / "scenes/reference";
+  }
+  if (command.specialisation) report.specialisation = runSpecialisation(report.devices, dir.parent_path(), cancel);
   if (command.sweep) {
-    std::filesystem::path dir = command.scenesDir;
-    if (dir.empty()) {
-      dir = "scenes/reference";
-      if (!std::filesystem::exists(dir)) dir = std::filesystem::path(SPECTRACE_SOURCE_DIR) / "scenes/reference";
-    }
     SweepOptions options;
     options.scenes = referenceScenes(dir);
     for (double d = command.minDecade; d <= command.maxDecade + 1e-9; d += 1.0)

@@ -32,7 +32,7 @@ struct BenchCommand {
   std::filesystem::path scenesDir;      // reference scenes (default scenes/reference)
   double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
   uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
-  bool throughput = true, sweep = true, colour = true;
+  bool throughput = true, sweep = true, colour = true, specialisation = true;
 };
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
 

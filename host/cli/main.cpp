@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-throughput", bench.throughput, "Skip the throughput section");
   benchCmd->add_flag("!--no-sweep", bench.sweep, "Skip the error sweep");
   benchCmd->add_flag("!--no-colour", bench.colour, "Skip the colour-from-binning study");
+  benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
 
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, onSignal);

@@ -37,6 +37,22 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
   return {groupsX, uint32_t((groups + groupsX - 1) / groupsX), groupsX * workgroupSize};
 }
 
+// Specialisation constants 2..5 of trace_beams.comp (device_shared.h, kSpec*).
+std::vector<uint32_t> traceSpecialisation(const TracePlan& plan, bool specialise) {
+  if (!specialise) return {31u, 1u, 2u, 2u};
+  uint32_t types = 0;
+  for (const auto& light : plan.lights) types |= 1u << light.type;
+  return {types, plan.lights.size() > 1 ? 1u : 0u, plan.constants.apertureDistance > 0.0f ? 1u : 0u,
+          plan.exactColour() ? 1u : 0u};
+}
+
+// Specialisation constants in constant_id order.
+std::vector<uint32_t> specConstants(uint32_t workgroupSize, bool record, const std::vector<uint32_t>& scene) {
+  std::vector<uint32_t> constants = {workgroupSize, record ? 1u : 0u};
+  constants.insert(constants.end(), scene.begin(), scene.end());
+  return constants;
+}
+
 }  // namespace
 
 HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPixel, uint64_t maxStorageBufferRange,
@@ -59,10 +75,11 @@ HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPi
   return split;
 }
 
-GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize)
+GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize, bool specialise)
     : context_(context),
       plan_(plan),
       workgroupSize_(workgroupSize),
+      traceSpecialisation_(traceSpecialisation(plan, specialise)),
       split_(HistogramSplit::forDevice(plan.pixelCount(), plan.countersPerPixel(), context.info().maxStorageBufferRange,
                                        context.info().maxMemoryAllocationSize)),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
@@ -71,7 +88,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
       unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
       cmfTable_(uploadedBuffer(context, plan.cmfTable)),
       tracePipeline_(context, embedded::spv_trace_beams(),
-                     traceBindings(), sizeof(device::TracePush), {workgroupSize, 0u}),
+                     traceBindings(), sizeof(device::TracePush), specConstants(workgroupSize, false, traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(),
                        {{device::kBindingResolveConstants}, {device::kBindingBinWeights},
                         {device::kBindingResolvedPixels}, {device::kBindingResolveHistogram, device::kMaxHistogramChunks}},
@@ -131,7 +148,7 @@ double GpuTracer::trace(uint64_t firstBeam, uint64_t beamCount) {
 
 std::vector<glm::uvec2> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
   vk_util::ComputePipeline recorder(context_, embedded::spv_trace_beams(), traceBindings(), sizeof(device::TracePush),
-                                    {workgroupSize_, 1u});
+                                    specConstants(workgroupSize_, true, traceSpecialisation_));
   Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(glm::uvec2), 16), {}, MemoryPlacement::HostVisible);
   recorder.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
   recorder.bindBuffer(device::kBindingLights, 0, lights_);

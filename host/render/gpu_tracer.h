@@ -27,7 +27,10 @@ struct HistogramSplit {
 
 class GpuTracer {
  public:
-  GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64);
+  // `specialise`: compile the trace pipeline for this plan (absent light
+  // types, light choice, pinhole and exact colour fixed by specialisation
+  // constants); otherwise use the general pipeline, which decides at run time.
+  GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64, bool specialise = true);
 
   // Adds beams [firstBeam, firstBeam + beamCount) to the device histogram.
   // Returns the device time of the trace pass in seconds (timestamps).
@@ -51,6 +54,7 @@ class GpuTracer {
   const vk_util::Context& context_;
   TracePlan plan_;
   uint32_t workgroupSize_;
+  std::vector<uint32_t> traceSpecialisation_;  // constant_id 2.. of trace_beams.comp
   HistogramSplit split_;
   vk_util::Buffer traceConstants_;
   vk_util::Buffer lights_;
