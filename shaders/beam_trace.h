@@ -67,7 +67,10 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float)
   lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(spectral.x, spectral.y),
                                 uniformFromWord(spectral.z));
   spareUniform = uniformFromWord(geometry.w);
-  bin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.bins);
+  // The bin of the full spectrum, then its place among the stored bins (the
+  // host stores every bin a light can reach, so the clamp never acts).
+  uint fullBin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.totalBins);
+  bin = min(max(fullBin, constants.binOffset) - constants.binOffset, constants.bins - 1u);
 
   vec3 origin;
   vec3 direction;

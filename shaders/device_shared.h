@@ -101,14 +101,16 @@ SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
 
 // Scene-wide constants of the trace pass. Each pixel owns countersPerPixel
 // 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour.
+// The stored bins are bins [binOffset, binOffset + bins) of the spectrum's
+// totalBins: those the scene's lights can reach (a trimmed spectrum).
 struct TraceConstants {
   vec2 sensorHalfSize;      // metres
   vec2 pixelsPerMetre;
   uint pixelsX;
   uint pixelsY;
-  uint bins;
+  uint bins;                // stored bins
   uint lightCount;
-  float lambdaMin;          // nm
+  float lambdaMin;          // nm, of the full spectrum
   float binsPerNm;
   float apertureDistance;   // metres in front of the sensor; 0 = bare sensor
   float apertureRadiusSq;   // metres^2
@@ -118,8 +120,8 @@ struct TraceConstants {
   uint cmfCount;            // nodes of the CMF table
   float cmfLambdaMin;       // nm of node 0
   float cmfNodesPerNm;      // 1 / node spacing
-  uint padding0;
-  uint padding1;
+  uint binOffset;           // first stored bin of the full spectrum
+  uint totalBins;           // bins of the full spectrum
   uint64_t seed;
 };
 

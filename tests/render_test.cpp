@@ -154,3 +154,43 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
 
 }  // namespace
 }  // namespace spectrace
+
+namespace spectrace {
+namespace {
+
+// Storing only the bins the lights can reach changes nothing but memory and
+// time: histograms (expanded to the full spectrum) and images are
+// bit-identical to storing every bin.
+TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
+  struct Case {
+    const char* name;
+    Spd spd;
+    uint32_t maxStoredBins;
+  };
+  const std::vector<Case> cases = {{"532 nm line", makeLineSpd(532.0), 1},
+                                   {"F11 (380-780 nm)", *cieIlluminant("F11"), 82},
+                                   {"Gaussian 589 nm", makeLineSpd(589.0, 2.0), 3}};
+  for (const auto& c : cases) {
+    Scene scene = bareSensorScene(0.02, 0.02, 8, 8, 94);
+    Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.01}, {0, 0, -1}, 1.0, c.spd);
+    disk.radiusM = 0.005;
+    scene.lights = {disk};
+    const TracePlan trimmed = buildTracePlan(scene, 1);
+    EXPECT_LE(trimmed.storedBins(), c.maxStoredBins) << c.name;
+    for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
+      RenderOptions options;
+      options.beams = 1'000'000;
+      options.device = device;
+      const RenderResult a = render(scene, options);
+      options.trimSpectrum = false;
+      const RenderResult b = render(scene, options);
+      EXPECT_EQ(b.plan.storedBins(), 94u);
+      EXPECT_GT(a.histogram.total(), 100'000u);
+      expectSameHistogram(a.histogram, b.histogram, c.name);
+      expectSameImage(a.image, b.image, c.name);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spectrace

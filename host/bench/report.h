@@ -23,12 +23,23 @@ struct SpecialisationRow {
   double generalSeconds = 0.0, specialisedSeconds = 0.0;  // device time of the trace pass
 };
 
+// Storing the full spectrum against only the bins the lights reach.
+struct TrimRow {
+  std::string scene, deviceName;
+  uint64_t beams = 0;
+  uint32_t fullBins = 0, storedBins = 0;
+  double fullMiB = 0.0, trimmedMiB = 0.0;                  // device histogram
+  double fullTraceSeconds = 0.0, trimmedTraceSeconds = 0.0;  // device time
+  double fullResolveSeconds = 0.0, trimmedResolveSeconds = 0.0;
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
   std::vector<BenchDevice> devices;
   std::vector<ThroughputRow> throughput;
   std::vector<SpecialisationRow> specialisation;
+  std::vector<TrimRow> trim;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };

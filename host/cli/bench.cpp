@@ -113,6 +113,42 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
   return rows;
 }
 
+// Full against trimmed spectra: memory, trace and resolve time, same run.
+std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std::filesystem::path& scenesDir,
+                             const std::atomic<bool>& cancel) {
+  std::vector<TrimRow> rows;
+  fmt::print("\nTrimmed spectra (device histogram, device times)\n");
+  fmt::print("{:<28} {:>10} {:>16} {:>18} {:>18}\n", "scene", "bins", "histogram MiB", "trace s", "resolve ms");
+  for (const auto& device : devices) {
+    if (device.kind != "gpu") continue;
+    for (const char* name : {"reference/laser_532", "reference/uniform_f11", "reference/uniform_led_b3", "default"}) {
+      const Scene scene = loadScene(scenesDir / (std::string(name) + ".json"));
+      TrimRow row;
+      row.scene = name;
+      row.deviceName = device.name;
+      row.beams = uint64_t(1) << 24;
+      for (bool trim : {false, true}) {
+        RenderOptions options;
+        options.device = DeviceChoice::Gpu;
+        options.beams = row.beams;
+        options.trimSpectrum = trim;
+        options.cancel = &cancel;
+        const RenderResult result = render(scene, options);
+        const double mib = double(result.plan.pixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
+        (trim ? row.storedBins : row.fullBins) = result.plan.storedBins();
+        (trim ? row.trimmedMiB : row.fullMiB) = mib;
+        (trim ? row.trimmedTraceSeconds : row.fullTraceSeconds) = result.traceDeviceSeconds;
+        (trim ? row.trimmedResolveSeconds : row.fullResolveSeconds) = result.resolveDeviceSeconds;
+      }
+      fmt::print("{:<28} {:>4} -> {:<4} {:>7.2f} -> {:<6.2f} {:>8.3f} -> {:<6.3f} {:>8.2f} -> {:<6.2f}\n", name, row.fullBins,
+                 row.storedBins, row.fullMiB, row.trimmedMiB, row.fullTraceSeconds, row.trimmedTraceSeconds,
+                 row.fullResolveSeconds * 1e3, row.trimmedResolveSeconds * 1e3);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
   // A fixed list, so the benchmark's rows are comparable between runs.
   std::vector<std::string> scenes;
@@ -137,7 +173,10 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     dir = "scenes/reference";
     if (!std::filesystem::exists(dir)) dir = std::filesystem::path(SPECTRACE_SOURCE_DIR) / "scenes/reference";
   }
-  if (command.specialisation) report.specialisation = runSpecialisation(report.devices, dir.parent_path(), cancel);
+  if (command.specialisation) {
+    report.specialisation = runSpecialisation(report.devices, dir.parent_path(), cancel);
+    report.trim = runTrim(report.devices, dir.parent_path(), cancel);
+  }
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);

@@ -53,6 +53,8 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   options.cpuThreads = command.threads;
   options.cancel = &cancel;
   options.checkpointSeconds = command.checkpointSeconds;
+  options.trimSpectrum = !command.fullSpectrum;
+  options.specialise = !command.general;
   if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
 
   const auto start = std::chrono::steady_clock::now();

@@ -19,6 +19,8 @@ struct RenderCommand {
   bool png = true;
   bool quiet = false;
   double checkpointSeconds = 60.0;
+  bool fullSpectrum = false;   // store every bin, not only those the lights reach
+  bool general = false;        // the general trace pipeline, not one specialised to the scene
 };
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 

@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--threads", render.threads, "CPU reference threads (default: all)");
   renderCmd->add_flag("!--no-png", render.png, "Do not write the PNG preview");
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
+  renderCmd->add_flag("--full-spectrum", render.fullSpectrum,
+                      "Store every wavelength bin on the device, not only those the lights can reach");
+  renderCmd->add_flag("--general-pipeline", render.general,
+                      "Use the general trace pipeline instead of one specialised to the scene");
   renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
                         "Write the image so far at this interval (0: never)");
 

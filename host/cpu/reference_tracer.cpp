@@ -26,6 +26,7 @@ uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCoun
   std::atomic<uint64_t> stoppedAtBlock{blockCount};
   uint64_t* counts = histogram.counts.data();
   const uint32_t bins = plan.bins;
+  const uint32_t firstBin = plan.firstStoredBin();
 
   auto worker = [&] {
     device::BeamKernel local = kernel;
@@ -43,7 +44,8 @@ uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCoun
         uint32_t pixel, bin;
         float lambda, spare;
         if (local.traceBeam(firstBeam + i, pixel, bin, lambda, spare)) {
-          std::atomic_ref<uint64_t>(counts[size_t(pixel) * bins + bin]).fetch_add(1, std::memory_order_relaxed);
+          const uint32_t fullBin = bin + firstBin;  // the kernel returns the stored bin
+          std::atomic_ref<uint64_t>(counts[size_t(pixel) * bins + fullBin]).fetch_add(1, std::memory_order_relaxed);
           if (exactColour) {
             const glm::vec3 c = local.cmfAtWavelength(lambda);
             uint64_t* sums = colourSums + size_t(pixel) * 3;

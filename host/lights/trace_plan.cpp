@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_frame.h"
+#include "cpu/beam_kernel.h"
 #include "colour/colour.h"
 #include "spectrum/wavelength_sampler.h"
 
@@ -173,7 +174,8 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   }
   c.pixelsPerChunk = uint32_t(plan.pixelCount());
   c.exactColour = options.exactColour ? 1u : 0u;
-  c.countersPerPixel = plan.bins + (options.exactColour ? 3u : 0u);
+  c.totalBins = plan.bins;
+  c.binOffset = 0;
   const Observer& observer = observerByName(scene.observer);
   for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
     plan.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));
@@ -181,6 +183,22 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   c.cmfLambdaMin = float(observer.lambdaNm.front());
   c.cmfNodesPerNm = float((observer.lambdaNm.size() - 1) / (observer.lambdaNm.back() - observer.lambdaNm.front()));
   c.seed = seed;
+  if (options.trimSpectrum) {
+    // The lowest and highest bin any sample can fall in, from the very float
+    // operations of the shader (beam_trace.h): an interval's wavelengths run
+    // from lambda0 + width * 0 to lambda0 + width * 1, monotonically in t.
+    device::BeamKernel kernel(c, plan.lights, plan.intervals);
+    uint32_t first = plan.bins, last = 0;
+    for (const auto& iv : plan.intervals) {
+      const float lowest = iv.lambda0 + iv.width * 0.0f;
+      const float highest = iv.lambda0 + iv.width * 1.0f;
+      first = std::min(first, kernel.binOfWavelength(lowest, c.lambdaMin, c.binsPerNm, plan.bins));
+      last = std::max(last, kernel.binOfWavelength(highest, c.lambdaMin, c.binsPerNm, plan.bins));
+    }
+    c.binOffset = first;
+    c.bins = last - first + 1;
+  }
+  c.countersPerPixel = c.bins + (options.exactColour ? 3u : 0u);
   return plan;
 }
 

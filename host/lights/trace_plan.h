@@ -29,7 +29,10 @@ struct TracePlan {
   double tracedPowerW = 0.0;            // sum over traced lights
   double pixelAreaM2 = 0.0;
   double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
-  uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
+  uint32_t pixelsX = 0, pixelsY = 0, bins = 0;  // bins of the full spectrum (host histograms, output)
+  // The bins the device stores: [firstStoredBin, firstStoredBin + storedBins).
+  uint32_t firstStoredBin() const { return constants.binOffset; }
+  uint32_t storedBins() const { return constants.bins; }
 
   uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
   bool exactColour() const { return constants.exactColour != 0; }
@@ -48,6 +51,9 @@ struct TracePlanOptions {
   // the aperture, facing away, a collimated beam that misses). Off: trace
   // them anyway (the unskipped reference path).
   bool skipUnreachableLights = true;
+  // Store only the wavelength bins the traced lights can reach (a 532 nm
+  // laser needs one); off: store the whole spectrum range.
+  bool trimSpectrum = true;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be

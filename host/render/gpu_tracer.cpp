@@ -189,11 +189,13 @@ SpectralHistogram GpuTracer::downloadHistogram() const {
   for (const auto& chunk : histogramChunks_) {
     counters.resize(chunk.size() / sizeof(uint64_t));
     chunk.download(counters.data(), chunk.size());
-    // Device layout: per pixel, `bins` counts then X, Y, Z colour sums.
+    // Device layout: per pixel, the stored bins' counts then X, Y, Z colour
+    // sums; the host histogram has every bin of the spectrum.
+    const uint32_t stored = plan_.storedBins();
     for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
       const uint64_t* src = counters.data() + local * stride;
-      std::copy(src, src + plan_.bins, histogram.counts.begin() + pixel * plan_.bins);
-      if (plan_.exactColour()) std::copy(src + plan_.bins, src + stride, histogram.colourSums.begin() + pixel * 3);
+      std::copy(src, src + stored, histogram.counts.begin() + pixel * plan_.bins + plan_.firstStoredBin());
+      if (plan_.exactColour()) std::copy(src + stored, src + stride, histogram.colourSums.begin() + pixel * 3);
     }
   }
   return histogram;
@@ -204,14 +206,20 @@ void GpuTracer::uploadHistogram(const SpectralHistogram& histogram) {
       histogram.hasExactColour() != plan_.exactColour())
     throw std::invalid_argument("uploadHistogram: the histogram's shape differs from the trace plan's");
   const uint32_t stride = plan_.countersPerPixel();
+  const uint32_t stored = plan_.storedBins();
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (auto& chunk : histogramChunks_) {
     counters.resize(chunk.size() / sizeof(uint64_t));
     for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
       uint64_t* dst = counters.data() + local * stride;
-      std::copy_n(histogram.counts.begin() + pixel * plan_.bins, plan_.bins, dst);
-      if (plan_.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + plan_.bins);
+      const auto bins = histogram.counts.begin() + pixel * plan_.bins;
+      for (uint32_t b = 0; b < plan_.bins; ++b) {
+        if ((b < plan_.firstStoredBin() || b >= plan_.firstStoredBin() + stored) && bins[b] != 0)
+          throw std::invalid_argument("uploadHistogram: counts in bins the trimmed spectrum does not store");
+      }
+      std::copy_n(bins + plan_.firstStoredBin(), stored, dst);
+      if (plan_.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + stored);
     }
     chunk.upload(counters.data(), chunk.size());
   }
@@ -221,7 +229,7 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
   device::ResolveConstants constants{};
   const uint64_t pixelCount = plan_.pixelCount();
   constants.pixelCount = uint32_t(pixelCount);
-  constants.bins = plan_.bins;
+  constants.bins = plan_.storedBins();
   constants.pixelsPerChunk = split_.pixelsPerChunk;
   constants.countersPerPixel = plan_.countersPerPixel();
   constants.exactColour = parameters.useExactColour && plan_.exactColour() ? 1u : 0u;
@@ -233,7 +241,11 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
   constants.xyzToRgbRow1 = glm::vec3(m[0][1], m[1][1], m[2][1]);
   constants.xyzToRgbRow2 = glm::vec3(m[0][2], m[1][2], m[2][2]);
   std::vector<glm::vec3> weights;
-  for (const auto& w : parameters.binWeights) weights.emplace_back(float(w[0]), float(w[1]), float(w[2]));
+  // Weights of the stored bins only.
+  for (uint32_t b = plan_.firstStoredBin(); b < plan_.firstStoredBin() + plan_.storedBins(); ++b) {
+    const auto& w = parameters.binWeights[b];
+    weights.emplace_back(float(w[0]), float(w[1]), float(w[2]));
+  }
 
   Buffer constantsBuffer(context_, sizeof(constants), {}, MemoryPlacement::DeviceLocal);
   constantsBuffer.upload(&constants, sizeof(constants));

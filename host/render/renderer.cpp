@@ -70,6 +70,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   RenderResult result;
   TracePlanOptions planOptions;
   planOptions.exactColour = options.exactColour;
+  planOptions.trimSpectrum = options.trimSpectrum;
   result.plan = buildTracePlan(scene, options.seed, planOptions);
   const TracePlan& plan = result.plan;
 

@@ -26,6 +26,7 @@ struct RenderOptions {
   uint32_t workgroupSize = 64;
   bool exactColour = true;           // per-beam CMF sums (see TracePlanOptions)
   bool specialise = true;            // GPU: a trace pipeline compiled for the scene
+  bool trimSpectrum = true;          // store only the bins the lights can reach
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
