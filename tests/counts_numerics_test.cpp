@@ -56,27 +56,16 @@ Buffer deviceBuffer(const vk_util::Context& context, const T* data, size_t count
   return buffer;
 }
 
-// The device layout: per pixel, countersPerPixel counters (the bins, then
-// the X, Y, Z colour sums when the plan has exact colour).
+// The device layout, through the library's own conversion.
 std::vector<uint64_t> toDeviceLayout(const SpectralHistogram& h, const TracePlan& plan) {
-  const uint32_t stride = plan.countersPerPixel();
-  std::vector<uint64_t> counters(plan.pixelCount() * stride, 0);
-  for (size_t p = 0; p < plan.pixelCount(); ++p) {
-    for (uint32_t b = 0; b < plan.bins; ++b) counters[p * stride + b] = h.counts[p * plan.bins + b];
-    if (h.hasExactColour())
-      for (uint32_t k = 0; k < 3; ++k) counters[p * stride + plan.bins + k] = h.colourSums[p * 3 + k];
-  }
+  std::vector<uint64_t> counters(plan.pixelCount() * plan.countersPerPixel(), 0);
+  packDeviceCounters(h, plan, 0, counters);
   return counters;
 }
 
 SpectralHistogram fromDeviceLayout(const std::vector<uint64_t>& counters, const TracePlan& plan) {
   SpectralHistogram h(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
-  const uint32_t stride = plan.countersPerPixel();
-  for (size_t p = 0; p < plan.pixelCount(); ++p) {
-    for (uint32_t b = 0; b < plan.bins; ++b) h.counts[p * plan.bins + b] = counters[p * stride + b];
-    if (plan.exactColour())
-      for (uint32_t k = 0; k < 3; ++k) h.colourSums[p * 3 + k] = counters[p * stride + plan.bins + k];
-  }
+  unpackDeviceCounters(counters, plan, 0, h);
   return h;
 }
 
@@ -134,20 +123,8 @@ class PresetTrace {
 
   // The resolve shader over the (preset and traced) counters.
   std::vector<device::ResolvedPixel> resolve(const ResolveParameters& parameters) const {
-    device::ResolveConstants rc{};
-    rc.pixelCount = uint32_t(plan_.pixelCount());
-    rc.bins = plan_.bins;
-    rc.pixelsPerChunk = uint32_t(plan_.pixelCount());
-    rc.countersPerPixel = plan_.countersPerPixel();
-    rc.exactColour = parameters.useExactColour && plan_.exactColour() ? 1u : 0u;
-    rc.irradiancePerCount = float(parameters.irradiancePerCount);
-    rc.xyzPerColourUnit = float(683.0 * parameters.irradiancePerCount / device::kColourFixedPointScale);
-    const glm::dmat3& m = parameters.xyzToRgb;
-    rc.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);
-    rc.xyzToRgbRow1 = glm::vec3(m[0][1], m[1][1], m[2][1]);
-    rc.xyzToRgbRow2 = glm::vec3(m[0][2], m[1][2], m[2][2]);
-    std::vector<glm::vec3> weights;
-    for (const auto& w : parameters.binWeights) weights.emplace_back(float(w[0]), float(w[1]), float(w[2]));
+    const device::ResolveConstants rc = resolveConstants(plan_, parameters, uint32_t(plan_.pixelCount()));
+    const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
     Buffer constants = deviceBuffer(context_, &rc, 1);
     Buffer weightBuffer = deviceBuffer(context_, weights.data(), weights.size());
     Buffer output(context_, plan_.pixelCount() * sizeof(device::ResolvedPixel), {}, MemoryPlacement::HostVisible);

@@ -183,20 +183,13 @@ std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t se
 
 SpectralHistogram GpuTracer::downloadHistogram() const {
   SpectralHistogram histogram(plan_.pixelsX, plan_.pixelsY, plan_.bins, plan_.exactColour());
-  const uint32_t stride = plan_.countersPerPixel();
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (const auto& chunk : histogramChunks_) {
     counters.resize(chunk.size() / sizeof(uint64_t));
     chunk.download(counters.data(), chunk.size());
-    // Device layout: per pixel, the stored bins' counts then X, Y, Z colour
-    // sums; the host histogram has every bin of the spectrum.
-    const uint32_t stored = plan_.storedBins();
-    for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
-      const uint64_t* src = counters.data() + local * stride;
-      std::copy(src, src + stored, histogram.counts.begin() + pixel * plan_.bins + plan_.firstStoredBin());
-      if (plan_.exactColour()) std::copy(src + stored, src + stride, histogram.colourSums.begin() + pixel * 3);
-    }
+    unpackDeviceCounters(counters, plan_, pixel, histogram);
+    pixel += counters.size() / plan_.countersPerPixel();
   }
   return histogram;
 }
@@ -205,34 +198,51 @@ void GpuTracer::uploadHistogram(const SpectralHistogram& histogram) {
   if (histogram.pixelsX != plan_.pixelsX || histogram.pixelsY != plan_.pixelsY || histogram.bins != plan_.bins ||
       histogram.hasExactColour() != plan_.exactColour())
     throw std::invalid_argument("uploadHistogram: the histogram's shape differs from the trace plan's");
-  const uint32_t stride = plan_.countersPerPixel();
-  const uint32_t stored = plan_.storedBins();
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (auto& chunk : histogramChunks_) {
     counters.resize(chunk.size() / sizeof(uint64_t));
-    for (size_t local = 0; local < counters.size() / stride; ++local, ++pixel) {
-      uint64_t* dst = counters.data() + local * stride;
-      const auto bins = histogram.counts.begin() + pixel * plan_.bins;
-      for (uint32_t b = 0; b < plan_.bins; ++b) {
-        if ((b < plan_.firstStoredBin() || b >= plan_.firstStoredBin() + stored) && bins[b] != 0)
-          throw std::invalid_argument("uploadHistogram: counts in bins the trimmed spectrum does not store");
-      }
-      std::copy_n(bins + plan_.firstStoredBin(), stored, dst);
-      if (plan_.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + stored);
-    }
+    packDeviceCounters(histogram, plan_, pixel, counters);
     chunk.upload(counters.data(), chunk.size());
+    pixel += counters.size() / plan_.countersPerPixel();
   }
 }
 
-RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seconds) {
+void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& plan, size_t firstPixel,
+                        std::span<uint64_t> out) {
+  const uint32_t stride = plan.countersPerPixel(), stored = plan.storedBins(), first = plan.firstStoredBin();
+  for (size_t local = 0; local < out.size() / stride; ++local) {
+    const size_t pixel = firstPixel + local;
+    uint64_t* dst = out.data() + local * stride;
+    const auto bins = histogram.counts.begin() + pixel * plan.bins;
+    for (uint32_t b = 0; b < plan.bins; ++b) {
+      if ((b < first || b >= first + stored) && bins[b] != 0)
+        throw std::invalid_argument("counts in bins the trimmed spectrum does not store");
+    }
+    std::copy_n(bins + first, stored, dst);
+    if (plan.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + stored);
+  }
+}
+
+void unpackDeviceCounters(std::span<const uint64_t> counters, const TracePlan& plan, size_t firstPixel,
+                          SpectralHistogram& histogram) {
+  const uint32_t stride = plan.countersPerPixel(), stored = plan.storedBins();
+  for (size_t local = 0; local < counters.size() / stride; ++local) {
+    const size_t pixel = firstPixel + local;
+    const uint64_t* src = counters.data() + local * stride;
+    std::copy(src, src + stored, histogram.counts.begin() + pixel * plan.bins + plan.firstStoredBin());
+    if (plan.exactColour()) std::copy(src + stored, src + stride, histogram.colourSums.begin() + pixel * 3);
+  }
+}
+
+device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolveParameters& parameters,
+                                          uint32_t pixelsPerChunk) {
   device::ResolveConstants constants{};
-  const uint64_t pixelCount = plan_.pixelCount();
-  constants.pixelCount = uint32_t(pixelCount);
-  constants.bins = plan_.storedBins();
-  constants.pixelsPerChunk = split_.pixelsPerChunk;
-  constants.countersPerPixel = plan_.countersPerPixel();
-  constants.exactColour = parameters.useExactColour && plan_.exactColour() ? 1u : 0u;
+  constants.pixelCount = uint32_t(plan.pixelCount());
+  constants.bins = plan.storedBins();
+  constants.pixelsPerChunk = pixelsPerChunk;
+  constants.countersPerPixel = plan.countersPerPixel();
+  constants.exactColour = parameters.useExactColour && plan.exactColour() ? 1u : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
   constants.xyzPerColourUnit = float(683.0 * parameters.irradiancePerCount / device::kColourFixedPointScale);
   // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
@@ -240,12 +250,22 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
   constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);
   constants.xyzToRgbRow1 = glm::vec3(m[0][1], m[1][1], m[2][1]);
   constants.xyzToRgbRow2 = glm::vec3(m[0][2], m[1][2], m[2][2]);
+  return constants;
+}
+
+std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolveParameters& parameters) {
   std::vector<glm::vec3> weights;
-  // Weights of the stored bins only.
-  for (uint32_t b = plan_.firstStoredBin(); b < plan_.firstStoredBin() + plan_.storedBins(); ++b) {
+  for (uint32_t b = plan.firstStoredBin(); b < plan.firstStoredBin() + plan.storedBins(); ++b) {
     const auto& w = parameters.binWeights[b];
     weights.emplace_back(float(w[0]), float(w[1]), float(w[2]));
   }
+  return weights;
+}
+
+RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seconds) {
+  const device::ResolveConstants constants = resolveConstants(plan_, parameters, split_.pixelsPerChunk);
+  const uint64_t pixelCount = plan_.pixelCount();
+  const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
 
   Buffer constantsBuffer(context_, sizeof(constants), {}, MemoryPlacement::DeviceLocal);
   constantsBuffer.upload(&constants, sizeof(constants));

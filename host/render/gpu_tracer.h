@@ -2,6 +2,7 @@
 // The Vulkan path: trace pass (beams -> 64-bit histogram chunks) and resolve
 // pass (histogram -> XYZ/RGB/irradiance), both on one device.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "cpu/resolve_cpu.h"
@@ -24,6 +25,20 @@ struct HistogramSplit {
   static HistogramSplit forDevice(uint64_t pixels, uint32_t countersPerPixel, uint64_t maxStorageBufferRange,
                                   uint64_t maxAllocation);
 };
+
+// The device's counter layout for a plan: per pixel, countersPerPixel
+// 64-bit counters, the stored bins then (with exact colour) X, Y, Z. The
+// host histogram has every bin of the spectrum.
+// Packs pixels [firstPixel, firstPixel + out.size() / countersPerPixel).
+void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& plan, size_t firstPixel,
+                        std::span<uint64_t> out);
+// Unpacks device counters of pixels starting at firstPixel into `histogram`.
+void unpackDeviceCounters(std::span<const uint64_t> counters, const TracePlan& plan, size_t firstPixel,
+                          SpectralHistogram& histogram);
+// The resolve pass's constants and the weights of the stored bins.
+device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolveParameters& parameters,
+                                          uint32_t pixelsPerChunk);
+std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolveParameters& parameters);
 
 class GpuTracer {
  public:
