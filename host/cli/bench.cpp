@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -47,6 +48,22 @@ std::string machineDescription() {
   return fmt::format("{}, {} hardware threads", model, std::thread::hardware_concurrency());
 }
 
+// Renders `scene` for timing: a small render with the same options first, so
+// pipeline compilation at the first dispatch stays out of every measured
+// variant alike.
+RenderResult timedRender(const Scene& scene, DeviceChoice device, uint64_t beams, const std::atomic<bool>& cancel,
+                         const std::function<void(RenderOptions&)>& configure = {}) {
+  RenderOptions options;
+  options.device = device;
+  options.beams = beams;
+  options.cancel = &cancel;
+  if (configure) configure(options);
+  RenderOptions warm = options;
+  warm.beams = uint64_t(1) << 16;
+  render(scene, warm);
+  return render(scene, options);
+}
+
 std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std::vector<BenchDevice>& devices,
                                          const std::atomic<bool>& cancel) {
   const Scene scene = throughputScene();
@@ -55,16 +72,12 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
   fmt::print("{:<44} {:<6} {:>9} {:>10} {:>15} {:>9}\n", "device", "colour", "wall s", "Mbeam/s", "Mbeam/s device", "hit rate");
   for (const auto& device : devices) {
     for (bool exactColour : {true, false}) {
-      RenderOptions options;
-      options.device = device.kind == "gpu" ? DeviceChoice::Gpu : DeviceChoice::Cpu;
-      options.beams = command.beams;
-      options.cpuThreads = command.threads;
-      options.cancel = &cancel;
-      options.exactColour = exactColour;
-      RenderOptions warm = options;
-      warm.beams = uint64_t(1) << 16;
-      render(scene, warm);  // the first dispatch compiles the pipeline
-      const RenderResult result = render(scene, options);
+      const RenderResult result =
+          timedRender(scene, device.kind == "gpu" ? DeviceChoice::Gpu : DeviceChoice::Cpu, command.beams, cancel,
+                      [&](RenderOptions& o) {
+                        o.cpuThreads = command.threads;
+                        o.exactColour = exactColour;
+                      });
       ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.total(),
                         result.traceWallSeconds, result.traceDeviceSeconds};
       fmt::print("{:<44} {:<6} {:>9.3f} {:>10.2f} {:>15} {:>8.1f}%\n", row.deviceName, exactColour ? "exact" : "bins",
@@ -97,12 +110,8 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
     for (const auto& [name, scene] : scenes) {
       SpecialisationRow row{name, device.name, uint64_t(1) << 24, 0.0, 0.0};
       for (bool specialise : {false, true}) {
-        RenderOptions options;
-        options.device = DeviceChoice::Gpu;
-        options.beams = row.beams;
-        options.specialise = specialise;
-        options.cancel = &cancel;
-        const RenderResult result = render(scene, options);
+        const RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
+                                                [&](RenderOptions& o) { o.specialise = specialise; });
         (specialise ? row.specialisedSeconds : row.generalSeconds) = result.traceDeviceSeconds;
       }
       fmt::print("{:<26} {:>10} {:>16.2f} {:>20.2f} {:>8.2f}\n", name, row.beams, double(row.beams) / row.generalSeconds * 1e-6,
@@ -128,12 +137,8 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
       row.deviceName = device.name;
       row.beams = uint64_t(1) << 24;
       for (bool trim : {false, true}) {
-        RenderOptions options;
-        options.device = DeviceChoice::Gpu;
-        options.beams = row.beams;
-        options.trimSpectrum = trim;
-        options.cancel = &cancel;
-        const RenderResult result = render(scene, options);
+        const RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
+                                                [&](RenderOptions& o) { o.trimSpectrum = trim; });
         const double mib = double(result.plan.pixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
         (trim ? row.storedBins : row.fullBins) = result.plan.storedBins();
         (trim ? row.trimmedMiB : row.fullMiB) = mib;

@@ -80,8 +80,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
                      light.notTracedBecause.c_str());
     }
   }
-  const std::string device = fmt::format("{} ({})", result.deviceName, result.deviceKind);
-  writeExr(output, result.image, metadataFor(scene, device, options.seed, options.firstBeam, result.beamsTraced, result.wallSeconds));
+  writeExr(output, result.image, metadataFor(scene, result.deviceLabel(), options.seed, options.firstBeam, result.beamsTraced, result.wallSeconds));
   if (command.png) writePngPreview(png, result.image);
   if (!command.quiet) {
     std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,

@@ -114,7 +114,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     if (options.onProgress) options.onProgress(done, options.beams);
     if (options.onCheckpoint && options.checkpointSeconds > 0.0 && done < options.beams &&
         secondsSince(lastCheckpoint) >= options.checkpointSeconds) {
-      options.onCheckpoint(resolveNow(done), done, fmt::format("{} ({})", result.deviceName, result.deviceKind));
+      options.onCheckpoint(resolveNow(done), done, result.deviceLabel());
       lastCheckpoint = Clock::now();
     }
   }

@@ -48,6 +48,9 @@ struct RenderResult {
   double traceWallSeconds = 0.0;      // the batch loop alone (no device setup, no resolve)
   double traceDeviceSeconds = 0.0;    // GPU timestamps (0 on the CPU)
   double resolveDeviceSeconds = 0.0;
+
+  // "name (kind)", as written into EXR headers.
+  std::string deviceLabel() const { return deviceName + " (" + deviceKind + ")"; }
 };
 
 RenderResult render(const Scene& scene, const RenderOptions& options);
