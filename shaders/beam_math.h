@@ -34,6 +34,9 @@
 #ifndef SPECTRACE_PINHOLE
 #define SPECTRACE_PINHOLE(apertureDistance) ((apertureDistance) > 0.0f)
 #endif
+#ifndef SPECTRACE_AIM
+#define SPECTRACE_AIM true
+#endif
 
 // (x >> 8) * 2^-24: exact in float32, in [0, 1 - 2^-24].
 FN float uniformFromWord(uint x) { return float(x >> 8) * (1.0f / 16777216.0f); }
@@ -151,36 +154,83 @@ FN vec3 toFrame(vec3 local, vec3 tangent, vec3 bitangent, vec3 axis) {
   return w;
 }
 
-// The seed's getNextBeam(): origin and direction of a beam from one light,
-// in the camera frame, from four uniforms (origin u, v; direction u, v).
-FN void emitBeam(uint type, vec3 position, vec3 axis, vec3 tangent, vec3 bitangent,
-                 float param0, float param1, float ou, float ov, float du, float dv,
-                 OUT(vec3) origin, OUT(vec3) direction) {
-  origin = position;
-  direction = axis;
-  if (SPECTRACE_LIGHT_ENABLED(kLightPoint) && type == kLightPoint) {
-    origin = position;
-    direction = sampleSphere(du, dv);
-  } else if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && type == kLightSpot) {
-    origin = position;
-    direction = toFrame(sampleCone(du, dv, param0), tangent, bitangent, axis);
-  } else if (SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) {
+// Where a beam leaves a light: the light's position, or a point uniform
+// over its disk or rectangle, from two uniforms.
+FN vec3 emitOrigin(uint type, vec3 position, vec3 tangent, vec3 bitangent, float param0, float param1, float ou,
+                   float ov) {
+  vec3 origin = position;
+  if ((SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) ||
+      (SPECTRACE_LIGHT_ENABLED(kLightLaser) && type == kLightLaser)) {
     vec2 p = sampleDisk(ou, ov, param0);
     PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
     origin = o;
-    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
   } else if (SPECTRACE_LIGHT_ENABLED(kLightRect) && type == kLightRect) {
     PRECISE float x = (ou - 0.5f) * param0;
     PRECISE float y = (ov - 0.5f) * param1;
     PRECISE vec3 o = position + tangent * x + bitangent * y;
     origin = o;
-    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
-  } else if (SPECTRACE_LIGHT_ENABLED(kLightLaser)) {  // laser: collimated, uniform disk cross-section
-    vec2 p = sampleDisk(ou, ov, param0);
-    PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
-    origin = o;
   }
+  return origin;
 }
+
+// The direction of an unaimed (analog) beam, drawn from the light's own
+// emission distribution, from two uniforms.
+FN vec3 emitDirection(uint type, vec3 axis, vec3 tangent, vec3 bitangent, float param0, float du, float dv) {
+  vec3 direction = axis;  // laser: collimated
+  if (SPECTRACE_LIGHT_ENABLED(kLightPoint) && type == kLightPoint) {
+    direction = sampleSphere(du, dv);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && type == kLightSpot) {
+    direction = toFrame(sampleCone(du, dv, param0), tangent, bitangent, axis);
+  } else if ((SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) ||
+             (SPECTRACE_LIGHT_ENABLED(kLightRect) && type == kLightRect)) {
+    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
+  }
+  return direction;
+}
+
+// The seed's getNextBeam(), unaimed: origin and direction of a beam from one
+// light, in the camera frame, from four uniforms (origin u, v; direction u, v).
+FN void emitBeam(uint type, vec3 position, vec3 axis, vec3 tangent, vec3 bitangent,
+                 float param0, float param1, float ou, float ov, float du, float dv,
+                 OUT(vec3) origin, OUT(vec3) direction) {
+  origin = emitOrigin(type, position, tangent, bitangent, param0, param1, ou, ov);
+  direction = emitDirection(type, axis, tangent, bitangent, param0, du, dv);
+}
+
+// Dot and cross products with a fixed order of operations (the built-ins'
+// order, and whether they fuse, is up to the compiler).
+FN float dot3(vec3 a, vec3 b) {
+  PRECISE float d = a.x * b.x + a.y * b.y + a.z * b.z;
+  return d;
+}
+FN vec3 cross3(vec3 a, vec3 b) {
+  PRECISE vec3 c = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+  return c;
+}
+
+// A frame (t, b) completing the unit vector n (Duff et al. 2017, branchless
+// orthonormal basis; the host builds light frames the same way in double).
+FN void frameAround(vec3 n, OUT(vec3) t, OUT(vec3) b) {
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+  PRECISE float a = -1.0f / (sign + n.z);
+  PRECISE float c = n.x * n.y * a;
+  PRECISE vec3 first = vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  PRECISE vec3 second = vec3(c, sign + n.y * n.y * a, -n.y);
+  t = first;
+  b = second;
+}
+
+// 1 - cos(a) from sin(a), for a in [0, pi/2], without cancellation.
+FN float oneMinusCosFromSin(float s) {
+  PRECISE float s2 = s * s;
+  PRECISE float h = s2 / (1.0f + sqrt(max(1.0f - s2, 0.0f)));
+  return h;
+}
+
+// Angular slack added to every aimed cone (radians, as a sine): covers the
+// float rounding of cone axes and directions (a few 1e-8), so the cone
+// always holds every direction that can be counted.
+#define SPECTRACE_AIM_SLACK 4.0e-7f
 
 // The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
 // camera frame and looks along +z, so a beam counts only when it travels

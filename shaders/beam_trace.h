@@ -37,27 +37,105 @@ FN vec3 cmfAtWavelength(float lambda) {
   return result;
 }
 
-// A CMF value in colour fixed point, rounded up with probability equal to
-// its fraction, so the sum is unbiased (to 2^-24 of a quantum, the
-// resolution of `u`, a uniform in [0, 1)). Scaling by 2^20, floor and the
-// subtraction are all exact in float.
-FN uint64_t colourFixedPoint(float value, float u) {
-  PRECISE float scaled = value * kColourFixedPointScale;
+// `scaled` rounded down or up, up with probability equal to its fraction,
+// so the sum is unbiased (to 2^-24 of a unit, the resolution of `u`, a
+// uniform in [0, 1)). floor and the subtraction are exact in float.
+FN uint64_t roundStochastic(float scaled, float u) {
   PRECISE float whole = floor(scaled);
   PRECISE float fraction = scaled - whole;
   return uint64_t(whole) + (u < fraction ? 1ul : 0ul);
 }
 
-// Returns whether beam `beamIndex` reaches the sensor, and where: the pixel
-// and wavelength bin. Every random number comes from (seed, beamIndex,
-// block), so the result is independent of batching, threads and device.
-// Also returns the beam's wavelength and a spare uniform (for rounding).
-FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform) {
+// A CMF value (times the beam's weight ratio) in colour fixed point. The
+// scaling by 2^20 is exact.
+FN uint64_t colourFixedPoint(float value, float u) {
+  PRECISE float scaled = value * kColourFixedPointScale;
+  return roundStochastic(scaled, u);
+}
+
+// What a counted beam of weight ratio `ratio` adds to its bin, and
+// ratio^2 in the same units to its pixel's squared-weight counter, in units
+// of 1 / weightUnits of a full-weight beam (device_shared.h). With
+// weightUnits == 1 every ratio is 1.
+FN uint64_t weightUnitsOf(float ratio, float u) {
+  PRECISE float scaled = ratio * float(constants.weightUnits);  // exact: a power of two
+  return constants.weightUnits == 1u ? 1ul : roundStochastic(scaled, u);
+}
+FN uint64_t squaredWeightUnitsOf(float ratio, float u) {
+  PRECISE float scaled = (ratio * ratio) * float(constants.weightUnits);
+  return roundStochastic(scaled, u);
+}
+
+// The seed's getNextBeam(), aimed where the light allows: origin and
+// direction of a beam from `light` from four uniforms, and its weight ratio
+// (emission density / sampling density, over the light's largest such value;
+// 0: the beam carries nothing). See lights/trace_plan.cpp for each case.
+FN float emitLightBeam(LightRecord light, float ou, float ov, float du, float dv, OUT(vec3) origin,
+                       OUT(vec3) direction) {
+  bool aimed = SPECTRACE_AIM && light.aimed != 0u;
+  bool pointLike = light.type == kLightPoint || light.type == kLightSpot;
+  float ratio = 1.0f;
+  if (aimed && SPECTRACE_LIGHT_ENABLED(kLightLaser) && light.type == kLightLaser) {
+    // Origins uniform over the disk whose collimated beams can reach the
+    // target; those outside the laser's own cross-section carry nothing.
+    vec2 p = sampleDisk(ou, ov, light.aimSpread);
+    PRECISE vec2 q = vec2(light.aimAxis.x + p.x, light.aimAxis.y + p.y);
+    PRECISE float q2 = q.x * q.x + q.y * q.y;
+    PRECISE vec3 o = light.position + light.tangent * q.x + light.bitangent * q.y;
+    origin = o;
+    direction = light.axis;
+    if (!(q2 <= light.aimAccept)) ratio = 0.0f;
+  } else {
+    origin = emitOrigin(light.type, light.position, light.tangent, light.bitangent, light.param0, light.param1, ou, ov);
+    if (aimed && pointLike) {
+      // Uniform in the cone holding the target; spot beams outside the
+      // spot's own cone carry nothing.
+      direction = toFrame(sampleCone(du, dv, light.aimSpread), light.aimTangent, light.aimBitangent, light.aimAxis);
+      if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && light.type == kLightSpot) {
+        vec3 off = cross3(direction, light.axis);
+        if (!(dot3(direction, light.axis) > 0.0f) || !(dot3(off, off) <= light.aimAccept)) ratio = 0.0f;
+      }
+    } else if (aimed) {
+      // Disk or rectangle: uniform in the cone from this origin that holds
+      // the target sphere, when that cone is narrower than a hemisphere's
+      // worth of cosine-weighted emission (2h < 1); ratio cos(theta) 2h, the
+      // density cos(theta)/pi over 1/(2 pi h), scaled by aimWeightScale.
+      PRECISE vec3 toCentre = constants.aimCentre - origin;
+      PRECISE float distance = sqrt(dot3(toCentre, toCentre));
+      PRECISE float sinHalf = constants.aimRadius / distance + SPECTRACE_AIM_SLACK;
+      if (sinHalf * sinHalf < 0.75f) {
+        float h = oneMinusCosFromSin(sinHalf);
+        PRECISE vec3 coneAxis = toCentre / distance;
+        vec3 t;
+        vec3 b;
+        frameAround(coneAxis, t, b);
+        direction = toFrame(sampleCone(du, dv, h), t, b, coneAxis);
+        PRECISE float cosTheta = dot3(direction, light.axis);
+        PRECISE float weight = cosTheta * (2.0f * h) * light.aimWeightScale;
+        ratio = cosTheta > 0.0f ? min(weight, 1.0f) : 0.0f;
+      } else {
+        direction = emitDirection(light.type, light.axis, light.tangent, light.bitangent, light.param0, du, dv);
+        ratio = min(light.aimWeightScale, 1.0f);
+      }
+    } else {
+      direction = emitDirection(light.type, light.axis, light.tangent, light.bitangent, light.param0, du, dv);
+    }
+  }
+  return ratio;
+}
+
+// Returns whether beam `beamIndex` is counted, and where: the pixel and
+// wavelength bin, with its weight ratio (> 0). Every random number comes
+// from (seed, beamIndex, block), so the result is independent of batching,
+// threads and device. Also returns the beam's wavelength and a spare
+// uniform (for rounding).
+FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform,
+                  OUT(float) ratio) {
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
 
-  // Light in proportion to its traced power, then interval in proportion to
-  // its power: both exact integer CDFs over 64-bit uniforms.
+  // Light in proportion to its sampled power, then interval in proportion
+  // to its power: both exact integer CDFs over 64-bit uniforms.
   uint lightIndex = 0u;
   if (SPECTRACE_SELECT_LIGHT) {
     uvec4 select = philox4x32(constants.seed, beamIndex, kRngBlockLight);
@@ -74,12 +152,12 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float)
 
   vec3 origin;
   vec3 direction;
-  emitBeam(light.type, light.position, light.axis, light.tangent, light.bitangent, light.param0,
-           light.param1, uniformFromWord(spectral.w), uniformFromWord(geometry.x),
-           uniformFromWord(geometry.y), uniformFromWord(geometry.z), origin, direction);
-  return hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
-                   constants.pixelsX, constants.pixelsY, constants.apertureDistance,
-                   constants.apertureRadiusSq, pixel);
+  ratio = emitLightBeam(light, uniformFromWord(spectral.w), uniformFromWord(geometry.x),
+                        uniformFromWord(geometry.y), uniformFromWord(geometry.z), origin, direction);
+  bool hit = hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
+                       constants.pixelsX, constants.pixelsY, constants.apertureDistance,
+                       constants.apertureRadiusSq, pixel);
+  return hit && ratio > 0.0f;
 }
 
 #endif  // SPECTRACE_BEAM_TRACE_H

@@ -24,6 +24,7 @@ SPECTRACE_CONSTANT uint kBindingSpectralIntervals = 2;
 SPECTRACE_CONSTANT uint kBindingHistogram = 3;  // array of kMaxHistogramChunks
 SPECTRACE_CONSTANT uint kBindingBeamRecords = 4;  // only read with kSpecRecordBeams
 SPECTRACE_CONSTANT uint kBindingCmfTable = 5;     // vec3 per node, for exact colour
+SPECTRACE_CONSTANT uint kBindingTraceStats = 6;   // TraceStats
 // Resolve pipeline (set 0).
 SPECTRACE_CONSTANT uint kBindingResolveConstants = 0;
 SPECTRACE_CONSTANT uint kBindingBinWeights = 1;
@@ -46,11 +47,24 @@ SPECTRACE_CONSTANT uint kSpecLightTypes = 2;
 SPECTRACE_CONSTANT uint kSpecSelectLight = 3;
 SPECTRACE_CONSTANT uint kSpecPinhole = 4;
 SPECTRACE_CONSTANT uint kSpecExactColour = 5;
+// Aimed sampling: no light aimed (0) / some (1) / at run time (2).
+SPECTRACE_CONSTANT uint kSpecAim = 6;
 // Trace pass: when 1, write each beam's (pixel, bin) to the beam records
 // instead of counting it (for beam-by-beam CPU/GPU comparison).
 SPECTRACE_CONSTANT uint kSpecRecordBeams = 1;
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
+
+// Weighted counts. An aimed beam carries weight ratio r in [0, 1] (its
+// emission density over its sampling density, divided by the light's largest
+// such ratio; the light-selection CDF carries the rest). A counted beam adds
+// round(r * weightUnits) to its bin, rounded stochastically (unbiased), and,
+// when weights vary, round(r^2 * weightUnits) to its pixel's squared-weight
+// counter (for the error estimate). weightUnits is 1 when every ratio is 1
+// (no aimed area light): counts are then plain hit counts. Otherwise it is
+// 2^24, so a uint64 counter holds 2^40 = 1.1e12 full-weight beams in one
+// pixel-bin, and the quantum is 6e-8 of a beam.
+SPECTRACE_CONSTANT uint kWeightUnitsFractional = 16777216u;  // 2^24
 
 // Light types (match spectrace::LightType).
 SPECTRACE_CONSTANT uint kLightPoint = 0;
@@ -79,6 +93,16 @@ struct LightRecord {
   vec3 axis;              // spot/laser direction, disk/rect normal
   vec3 tangent;           // with bitangent, completes an orthonormal frame
   vec3 bitangent;
+  // Aimed sampling (see lights/trace_plan.cpp for the derivations).
+  uint aimed;             // 0: analog emission; 1: only towards the camera's target sphere
+  float aimSpread;        // point/spot: 1 - cos(half angle) of the cone about aimAxis holding
+                          // the target; laser: radius of the disk of origins that can reach it
+  float aimAccept;        // spot: sin^2(spot half angle); laser: radius^2 (the light's own emission)
+  float aimWeightScale;   // disk/rect: 1 / the light's largest weight, so ratios are <= 1
+  vec3 aimAxis;           // point/spot: cone axis; laser: (centre of the origin disk in (tangent, bitangent), 0)
+  vec3 aimTangent;        // point/spot: completes the cone's frame
+  vec3 aimBitangent;
+  float padding1;
 };
 
 // One interval of a light's piecewise-linear SPD, restricted to the
@@ -100,7 +124,8 @@ struct SpectralInterval {
 SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
 
 // Scene-wide constants of the trace pass. Each pixel owns countersPerPixel
-// 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour.
+// 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour,
+// then the sum of squared weights when weightUnits > 1.
 // The stored bins are bins [binOffset, binOffset + bins) of the spectrum's
 // totalBins: those the scene's lights can reach (a trimmed spectrum).
 struct TraceConstants {
@@ -122,7 +147,24 @@ struct TraceConstants {
   float cmfNodesPerNm;      // 1 / node spacing
   uint binOffset;           // first stored bin of the full spectrum
   uint totalBins;           // bins of the full spectrum
+  vec3 aimCentre;           // sphere holding every point a counted beam passes: the
+  float aimRadius;          // pinhole's disk, or the bare sensor (metres)
+  uint weightUnits;         // 1 or kWeightUnitsFractional (see there)
+  uint padding0;
   uint64_t seed;
+};
+
+// Totals of the trace pass, besides the histogram.
+struct TraceStats {
+  uint64_t countedBeams;  // beams that were counted (hit the sensor with weight > 0)
+};
+
+// What the record mode writes per beam.
+struct BeamRecord {
+  uint pixel;   // kBeamMissed for a beam that was not counted
+  uint bin;
+  uint units;   // what the beam adds to its bin (weightUnits x its weight ratio)
+  uint padding0;
 };
 
 // Per-dispatch push constants of the trace pass.
@@ -168,9 +210,11 @@ struct RngCheckPush {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(LightRecord) == 80);
+static_assert(sizeof(LightRecord) == 136);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 88);
+static_assert(sizeof(TraceConstants) == 112);
+static_assert(sizeof(TraceStats) == 8);
+static_assert(sizeof(BeamRecord) == 16);
 static_assert(sizeof(TracePush) == 16);
 static_assert(sizeof(ResolveConstants) == 68);
 static_assert(sizeof(ResolvedPixel) == 28);

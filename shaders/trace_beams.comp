@@ -16,9 +16,11 @@ layout(constant_id = 2) const uint enabledLightTypes = 31u;  // bit per light ty
 layout(constant_id = 3) const uint selectLight = 1u;         // 0: one light, no choice
 layout(constant_id = 4) const uint pinholeMode = 2u;         // 0 bare, 1 pinhole, 2 run time
 layout(constant_id = 5) const uint exactColourMode = 2u;     // 0 off, 1 on, 2 run time
+layout(constant_id = 6) const uint aimMode = 2u;             // 0 no light aimed, 1 some, 2 run time
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
 #define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
+#define SPECTRACE_AIM (aimMode != 0u)
 
 layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
   TraceConstants constants;
@@ -33,10 +35,13 @@ layout(set = 0, binding = kBindingHistogram, scalar) buffer HistogramChunk {
   uint64_t counts[];
 } histogram[kMaxHistogramChunks];
 layout(set = 0, binding = kBindingBeamRecords, scalar) writeonly buffer BeamRecordBlock {
-  uvec2 beamRecords[];  // (pixel, bin), or (kBeamMissed, kBeamMissed)
+  BeamRecord beamRecords[];
 };
 layout(set = 0, binding = kBindingCmfTable, scalar) readonly buffer CmfBlock {
   vec3 cmfTable[];
+};
+layout(set = 0, binding = kBindingTraceStats, scalar) buffer TraceStatsBlock {
+  TraceStats stats;
 };
 layout(push_constant, scalar) uniform PushBlock {
   TracePush push;
@@ -66,25 +71,39 @@ void addCount(uint chunk, uint index, uint64_t amount) {
   }
 }
 
+// Counted beams of this workgroup, added to stats with one atomic.
+shared uint groupCounted;
+
 void main() {
+  if (gl_LocalInvocationIndex == 0u) groupCounted = 0u;
+  barrier();
   uint local = gl_GlobalInvocationID.y * push.beamsPerRow + gl_GlobalInvocationID.x;
-  if (local >= push.beamCount) return;
-  uint pixel;
-  uint bin;
-  float lambda;
-  float spareUniform;
-  bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin, lambda, spareUniform);
-  if (recordBeams != 0u) {
-    beamRecords[local] = hit ? uvec2(pixel, bin) : uvec2(kBeamMissed, kBeamMissed);
-  } else if (hit) {
-    uint chunk = pixel / constants.pixelsPerChunk;
-    uint base = (pixel - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
-    addCount(chunk, base + bin, 1ul);
-    if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
-      vec3 cmf = cmfAtWavelength(lambda);
-      addCount(chunk, base + constants.bins, colourFixedPoint(cmf.x, spareUniform));
-      addCount(chunk, base + constants.bins + 1u, colourFixedPoint(cmf.y, spareUniform));
-      addCount(chunk, base + constants.bins + 2u, colourFixedPoint(cmf.z, spareUniform));
+  if (local < push.beamCount) {
+    uint pixel;
+    uint bin;
+    float lambda;
+    float spareUniform;
+    float ratio;
+    bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin, lambda, spareUniform, ratio);
+    uint64_t units = hit ? weightUnitsOf(ratio, spareUniform) : 0ul;
+    if (recordBeams != 0u) {
+      beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(units), 0u) : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
+    } else if (hit) {
+      atomicAdd(groupCounted, 1u);
+      uint chunk = pixel / constants.pixelsPerChunk;
+      uint base = (pixel - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
+      addCount(chunk, base + bin, units);
+      uint next = base + constants.bins;
+      if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
+        PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
+        addCount(chunk, next, colourFixedPoint(cmf.x, spareUniform));
+        addCount(chunk, next + 1u, colourFixedPoint(cmf.y, spareUniform));
+        addCount(chunk, next + 2u, colourFixedPoint(cmf.z, spareUniform));
+        next += 3u;
+      }
+      if (aimMode != 0u && constants.weightUnits != 1u) addCount(chunk, next, squaredWeightUnitsOf(ratio, spareUniform));
     }
   }
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && groupCounted != 0u) atomicAdd(stats.countedBeams, uint64_t(groupCounted));
 }

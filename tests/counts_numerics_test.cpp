@@ -28,6 +28,7 @@
 #include "render/renderer.h"
 #include "rng/philox.h"
 #include "support/statistics.h"
+#include "support/beam_agreement.h"
 #include "support/test_scenes.h"
 #include "vulkan/buffer.h"
 #include "vulkan/compute_pipeline.h"
@@ -379,8 +380,8 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
   std::vector<uint32_t> perCell(size_t(plan.pixelCount() * plan.bins), 0);
   uint64_t hits = 0;
   for (const auto& r : base)
-    if (r.x != device::kBeamMissed) {
-      ++perCell[size_t(r.x) * plan.bins + r.y];
+    if (r.pixel != device::kBeamMissed) {
+      ++perCell[size_t(r.pixel) * plan.bins + r.bin];
       ++hits;
     }
   double sumP2 = 0.0;
@@ -406,11 +407,8 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
     device::BeamKernel cpu(shiftedPlan.constants, shiftedPlan.lights, shiftedPlan.intervals);
     uint64_t same = 0, cpuDiffers = 0;
     for (uint32_t i = 0; i < kCount; ++i) {
-      if (base[i].x != device::kBeamMissed && base[i] == shifted[i]) ++same;
-      uint32_t pixel = 0, bin = 0;
-      const bool hit = cpu.trace(s.firstBeam + i, pixel, bin);
-      const glm::uvec2 expected = hit ? glm::uvec2(pixel, bin) : glm::uvec2(device::kBeamMissed);
-      cpuDiffers += expected != shifted[i];
+      if (base[i].pixel != device::kBeamMissed && testing::sameRecord(base[i], shifted[i])) ++same;
+      cpuDiffers += !testing::sameRecord(testing::cpuRecord(cpu, s.firstBeam + i), shifted[i]);
     }
     std::printf("%s: %llu of %u beams land in the same (pixel, bin) as beam i (chance: %.2f); CPU/GPU differ on "
                 "%llu\n",

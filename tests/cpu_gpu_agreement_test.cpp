@@ -9,6 +9,7 @@
 #include "cpu/reference_tracer.h"
 #include "lights/trace_plan.h"
 #include "render/gpu_tracer.h"
+#include "support/beam_agreement.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
@@ -40,32 +41,15 @@ Scene mixedScene(bool pinhole) {
   return scene;
 }
 
-void compareBeamByBeam(const Scene& scene, uint64_t firstBeam, uint32_t count, const char* name, uint64_t minHits) {
-  const TracePlan plan = buildTracePlan(scene, 12345);
-  GpuTracer gpu(testing::sharedVulkan(), plan);
-  const auto records = gpu.traceRecorded(firstBeam, count);
-  device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
-  uint64_t hits = 0, same = 0, differ = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    uint32_t pixel, bin;
-    const bool hit = cpu.trace(firstBeam + i, pixel, bin);
-    const bool gpuHit = records[i].x != device::kBeamMissed;
-    hits += hit;
-    if (hit == gpuHit && (!hit || (records[i].x == pixel && records[i].y == bin))) {
-      ++same;
-    } else if (++differ <= 10) {
-      std::printf("  %s: beam %llu differs: cpu %s (pixel %u, bin %u), gpu (pixel %u, bin %u)\n", name,
-                  (unsigned long long)(firstBeam + i), hit ? "hit" : "miss", hit ? pixel : 0, hit ? bin : 0,
-                  records[i].x, records[i].y);
-    }
-  }
-  const double rate = double(same) / double(count);
-  std::printf("%s: %llu of %u beams identical (%.6f%%), %llu hits, %llu differ\n", name, (unsigned long long)same, count,
-              100.0 * rate, (unsigned long long)hits, (unsigned long long)differ);
-  ::testing::Test::RecordProperty(std::string(name) + "_agreement", std::to_string(rate));
-  EXPECT_GT(hits, minHits) << "the scene should put many beams on the sensor";
+void compareBeamByBeam(const Scene& scene, uint64_t firstBeam, uint32_t count, const char* name, uint64_t minHits,
+                       bool aim = true) {
+  TracePlanOptions options;
+  options.aim = aim;
+  const TracePlan plan = buildTracePlan(scene, 12345, options);
+  const testing::BeamAgreement agreement = testing::beamByBeam(plan, firstBeam, count, name);
+  EXPECT_GT(agreement.hits, minHits) << "the scene should put many beams on the sensor";
   // The requirement is 99.99%; the shared code and NoContraction aim at 100%.
-  EXPECT_GE(rate, 0.9999);
+  EXPECT_GE(agreement.rate, 0.9999);
 }
 
 TEST(CpuGpuAgreement, BareSensorEveryLightTypeBeamByBeam) {
@@ -74,6 +58,11 @@ TEST(CpuGpuAgreement, BareSensorEveryLightTypeBeamByBeam) {
 
 TEST(CpuGpuAgreement, PinholeEveryLightTypeBeamByBeam) {
   compareBeamByBeam(mixedScene(true), 0, 2'000'000, "pinhole", 5'000);
+}
+
+TEST(CpuGpuAgreement, UnaimedEveryLightTypeBeamByBeam) {
+  compareBeamByBeam(mixedScene(false), 0, 1'000'000, "bare, analog", 50'000, false);
+  compareBeamByBeam(mixedScene(true), 0, 1'000'000, "pinhole, analog", 1'000, false);
 }
 
 TEST(CpuGpuAgreement, BeamIndicesNear2To32And2To40) {

@@ -31,6 +31,7 @@
 #include "render/gpu_tracer.h"
 #include "render/renderer.h"
 #include "support/statistics.h"
+#include "support/beam_agreement.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
@@ -124,10 +125,20 @@ struct MatchStats {
   double expectedHits = 0.0;
 };
 
-// Compares each pixel's count with beams * p(pixel). p == 0 demands a zero
-// count; pixels expected to hold fewer than kMinExpected are pooled; the
-// total is checked too. Returns the worst |z| over all these cells.
-MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& camera, uint64_t beams,
+// How much likelier an aimed beam is to be counted than an analog one:
+// tracedPowerW / sampledPowerW, for plans whose beams all have weight ratio
+// 1 (counts are then plain hits: point, spot and laser lights).
+double aimGain(const TracePlan& plan) {
+  EXPECT_FALSE(plan.weighted()) << "these checks count hits; weighted plans need their weights";
+  return plan.tracedPowerW / plan.sampledPowerW;
+}
+
+// Compares each pixel's count with beams * gain * p(pixel), where p is an
+// analog beam's probability of landing there and gain is aimGain(plan).
+// p == 0 demands a zero count; pixels expected to hold fewer than
+// kMinExpected are pooled; the total is checked too. Returns the worst |z|
+// over all these cells.
+MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& camera, uint64_t beams, double gain,
                              const std::function<double(const PixelRect&)>& probability, const std::string& name) {
   const std::vector<uint64_t> counts = pixelCounts(histogram);
   const double n = double(beams);
@@ -137,7 +148,7 @@ MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& c
   int cells = 0, failures = 0;
   for (int row = 0; row < camera.pixelsY; ++row) {
     for (int col = 0; col < camera.pixelsX; ++col) {
-      const double p = probability(pixelRect(camera, col, row));
+      const double p = gain * probability(pixelRect(camera, col, row));
       const uint64_t count = counts[size_t(row) * camera.pixelsX + col];
       stats.hits += count;
       totalP += p;
@@ -189,29 +200,9 @@ MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& c
 // their (pixel, bin) beam by beam. Returns the share that agrees.
 double beamByBeamAgreement(const TracePlan& plan, uint64_t firstBeam, uint32_t count, const std::string& name,
                            uint64_t* hitsOut = nullptr) {
-  GpuTracer gpu(testing::sharedVulkan(), plan);
-  const auto records = gpu.traceRecorded(firstBeam, count);
-  device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
-  uint64_t same = 0, hits = 0, differ = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    uint32_t pixel = 0, bin = 0;
-    const bool hit = cpu.trace(firstBeam + i, pixel, bin);
-    const bool gpuHit = records[i].x != device::kBeamMissed;
-    hits += hit;
-    if (hit == gpuHit && (!hit || (records[i].x == pixel && records[i].y == bin))) {
-      ++same;
-    } else if (++differ <= 5) {
-      std::printf("  %s: beam %llu differs: cpu %s (pixel %u, bin %u), gpu (pixel %u, bin %u)\n", name.c_str(),
-                  (unsigned long long)(firstBeam + i), hit ? "hit" : "miss", hit ? pixel : 0u, hit ? bin : 0u,
-                  records[i].x, records[i].y);
-    }
-  }
-  const double rate = double(same) / double(count);
-  std::printf("%s: CPU/GPU beam by beam: %llu of %u identical (%.4f%%), %llu hits\n", name.c_str(),
-              (unsigned long long)same, count, 100.0 * rate, (unsigned long long)hits);
-  ::testing::Test::RecordProperty(propertyKey(name + "_agreement"), std::to_string(rate));
-  if (hitsOut) *hitsOut = hits;
-  return rate;
+  const testing::BeamAgreement agreement = testing::beamByBeam(plan, firstBeam, count, name);
+  if (hitsOut) *hitsOut = agreement.hits;
+  return agreement.rate;
 }
 
 Scene bareSensor(double widthM, double heightM, int pixelsX, int pixelsY) {
@@ -251,13 +242,13 @@ TEST(GeometryNumericsScale, SpotAMillionMetresFromAMillimetreSensor) {
     return rectangleSolidAngle(r.x1, r.x2, r.y1, r.y2, light.x, light.y, light.z) / coneSolidAngle;
   };
   const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-  const MatchStats stats = expectCountsMatch(run.histogram, scene.camera, kBeams, probability, "spot at 1e6 m (GPU)");
+  const MatchStats stats = expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, "spot at 1e6 m (GPU)");
   EXPECT_GT(stats.hits, kBeams / 3);
   expectFiniteImage(run.image, "spot at 1e6 m");
 
   SpectralHistogram cpu;
   traceOnCpu(plan, 0, kBeams / 4, cpu);
-  expectCountsMatch(cpu, scene.camera, kBeams / 4, probability, "spot at 1e6 m (CPU)");
+  expectCountsMatch(cpu, scene.camera, kBeams / 4, aimGain(plan), probability, "spot at 1e6 m (CPU)");
   EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, "spot at 1e6 m"), 0.9999);
 }
 
@@ -278,11 +269,11 @@ TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
     return (r.x2 - r.x1) * (r.y2 - r.y1) / (M_PI * kRadius * kRadius);
   };
   const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-  expectCountsMatch(run.histogram, scene.camera, kBeams, probability, "laser at 1e6 m (GPU)");
+  expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, "laser at 1e6 m (GPU)");
   expectFiniteImage(run.image, "laser at 1e6 m");
   SpectralHistogram cpu;
   traceOnCpu(plan, 0, kBeams / 4, cpu);
-  expectCountsMatch(cpu, scene.camera, kBeams / 4, probability, "laser at 1e6 m (CPU)");
+  expectCountsMatch(cpu, scene.camera, kBeams / 4, aimGain(plan), probability, "laser at 1e6 m (CPU)");
   EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, "laser at 1e6 m"), 0.9999);
 }
 
@@ -297,7 +288,7 @@ TEST(GeometryNumericsScale, MicrometrePixels) {
     return rectangleSolidAngle(r.x1, r.x2, r.y1, r.y2, light.x, light.y, light.z) / (4.0 * M_PI);
   };
   const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-  expectCountsMatch(run.histogram, scene.camera, kBeams, probability, "1 um pixels (GPU)");
+  expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, "1 um pixels (GPU)");
   expectFiniteImage(run.image, "1 um pixels");
   EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, "1 um pixels"), 0.9999);
 }
@@ -349,7 +340,7 @@ TEST(GeometryNumericsScale, CameraFarFromTheOriginMatchesTheSameSetupAtTheOrigin
     EXPECT_NEAR(plan.lights[0].position.y, nearLocal.y, 1e-8) << c.name;
     EXPECT_NEAR(plan.lights[0].position.z, nearLocal.z, 1e-8) << c.name;
     const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-    expectCountsMatch(run.histogram, scene.camera, kBeams, probability, std::string(c.name) + " (GPU)");
+    expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, std::string(c.name) + " (GPU)");
     expectFiniteImage(run.image, c.name);
     EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, c.name), 0.9999);
     if (first.counts.empty()) {
@@ -416,12 +407,12 @@ TEST(GeometryNumericsAngles, GrazingLaserMatchesItsEllipticFootprint) {
              diskShareBelow((r.x1 - g.hit.x) / g.footprintHalfLength);
     };
     const GpuRun run = traceOnGpu(g.scene, plan, 0, kBeams);
-    const MatchStats stats = expectCountsMatch(run.histogram, g.scene.camera, kBeams, probability, name + " (GPU)");
+    const MatchStats stats = expectCountsMatch(run.histogram, g.scene.camera, kBeams, aimGain(plan), probability, name + " (GPU)");
     EXPECT_GT(stats.hits, kBeams * 99 / 100) << name << ": the whole footprint lies on the sensor";
     expectFiniteImage(run.image, name);
     SpectralHistogram cpu;
     traceOnCpu(plan, 0, kBeams / 4, cpu);
-    expectCountsMatch(cpu, g.scene.camera, kBeams / 4, probability, name + " (CPU)");
+    expectCountsMatch(cpu, g.scene.camera, kBeams / 4, aimGain(plan), probability, name + " (CPU)");
     EXPECT_GE(beamByBeamAgreement(plan, 0, 200'000, name), 0.9999);
   }
 }
@@ -539,7 +530,7 @@ TEST(GeometryNumericsAngles, PinholeOfRadius1e7Metres) {
     ASSERT_EQ(d, c.heightAboveAperture) << "the light height should be exact in float";
     const double r2 = double(plan.constants.apertureRadiusSq);
     const double root = std::sqrt(d * d + r2);
-    const double p = r2 / (2.0 * root * (root + d));
+    const double p = aimGain(plan) * r2 / (2.0 * root * (root + d));
     const double n = double(c.beams);
     const double sigma = std::sqrt(n * p * (1.0 - p));
     const std::string name = format("pinhole r = 1e-7 m, light %.3g m above it", d);

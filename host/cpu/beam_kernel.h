@@ -20,12 +20,15 @@ class BeamKernel {
              std::span<const SpectralInterval> spectralIntervals, std::span<const glm::vec3> cmfNodes = {})
       : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), cmf(cmfNodes) {}
 
-  // Whether beam `index` reaches the sensor, and its pixel and bin. (The
-  // shared functions cannot be const-qualified, as GLSL has no such thing;
-  // the kernel is small, so each thread uses its own copy.)
-  bool trace(uint64_t index, uint& pixelOut, uint& binOut) {
-    float lambda, spare;
-    return traceBeam(index, pixelOut, binOut, lambda, spare);
+  // Whether beam `index` is counted, its pixel and (stored) bin, and what
+  // it adds to the bin (weightUnits x its weight ratio). (The shared
+  // functions cannot be const-qualified, as GLSL has no such thing; the
+  // kernel is small, so each thread uses its own copy.)
+  bool trace(uint64_t index, uint& pixelOut, uint& binOut, uint64_t* unitsOut = nullptr) {
+    float lambda, spare, ratio;
+    const bool hit = traceBeam(index, pixelOut, binOut, lambda, spare, ratio);
+    if (unitsOut) *unitsOut = hit ? weightUnitsOf(ratio, spare) : 0;
+    return hit;
   }
 
  private:

@@ -76,6 +76,114 @@ std::string unreachableBecause(const Light& light, const glm::dvec3& position, c
   return "";
 }
 
+// Aimed sampling. Every counted beam passes through the target sphere: the
+// pinhole's disk, or the bare sensor (its half diagonal). A light whose
+// beams can be drawn only towards that sphere gets aimed = 1 and these
+// parameters; each beam's weight is then (emission density) / (sampling
+// density), and the light's largest weight w_max is folded into its
+// selection probability (power x w_max), so the shader's weight ratio,
+// weight / w_max, lies in [0, 1]:
+// - point: uniform in the cone of half angle a holding the sphere, with
+//   h = 1 - cos a: weight = (1 / 4 pi) / (1 / 2 pi h) = h / 2, for every beam;
+// - spot (cone h_s = param0), when h < h_s: weight h / h_s inside the spot's
+//   cone, 0 outside;
+// - laser: origins uniform over the disk of radius rho around the target's
+//   projection along the beam, when rho < R: weight rho^2 / R^2 inside the
+//   laser's cross-section, 0 outside;
+// - disk, rect: per origin, uniform in the cone holding the sphere (h from
+//   that origin) when 2h < 1: weight cos(theta) / pi / (1 / 2 pi h) =
+//   2 h cos(theta); w_max bounds 2h over the emitter from its closest point.
+// Cones are widened by SPECTRACE_AIM_SLACK (beam_math.h) so float rounding
+// cannot leave a countable direction outside them, and the values the shader
+// samples with are the float values the weights are computed from.
+struct AimTarget {
+  glm::dvec3 centre;
+  double radius;
+};
+
+AimTarget aimTarget(const Camera& camera) {
+  if (camera.pinhole) return {{0.0, 0.0, camera.pinhole->distanceM}, camera.pinhole->radiusM};
+  return {{0.0, 0.0, 0.0}, 0.5 * std::hypot(camera.sensorWidthM, camera.sensorHeightM)};
+}
+
+// 1 - cos(a) from sin(a) = s <= 1, without cancellation.
+double oneMinusCosFromSin(double s) { return s * s / (1.0 + std::sqrt(std::max(0.0, 1.0 - s * s))); }
+
+// The float nearest above x (the shader must sample a cone at least this wide).
+float floatAtLeast(double x) {
+  float f = float(x);
+  return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+
+// Fills the record's aim fields for an aimable light and returns its largest
+// weight w_max; returns 1 (and leaves aimed = 0) when aiming would not help.
+double aimLight(const Light& light, const glm::dvec3& position, const glm::dvec3& axis, const glm::dvec3& tangent,
+                const glm::dvec3& bitangent, const AimTarget& target, device::LightRecord& record) {
+  constexpr double kSlack = double(SPECTRACE_AIM_SLACK);
+  const glm::dvec3 toCentre = target.centre - position;
+  const double distance = glm::length(toCentre);
+  switch (light.type) {
+    case LightType::Point:
+    case LightType::Spot: {
+      const double s = target.radius / distance + kSlack;
+      if (!(s < 1.0)) return 1.0;  // inside or at the sphere: nothing to gain
+      const float h = floatAtLeast(oneMinusCosFromSin(s));
+      const double emissionSpread = light.type == LightType::Point ? 2.0 : double(record.param0);
+      if (!(double(h) < emissionSpread)) return 1.0;
+      const glm::dvec3 coneAxis = toCentre / distance;
+      const glm::dvec3 coneTangent = perpendicular(coneAxis);
+      record.aimed = 1;
+      record.aimSpread = h;
+      record.aimAxis = toFloat(coneAxis);
+      record.aimTangent = toFloat(coneTangent);
+      record.aimBitangent = toFloat(glm::cross(coneAxis, coneTangent));
+      // Spot: sin^2 of the half angle the analog path samples (1 - cos = param0).
+      const double hs = double(record.param0);
+      record.aimAccept = float(hs * (2.0 - hs));
+      return double(h) / emissionSpread;
+    }
+    case LightType::Laser: {
+      // The beam runs along the axis, so only origins within the sphere's
+      // radius of its centre's projection onto the laser's plane can reach
+      // it; the slack covers the float rounding of origins and hit points.
+      const double slack = 1e-6 * (target.radius + glm::length(position) + glm::length(target.centre) + light.radiusM);
+      const float rho = floatAtLeast(target.radius + slack);
+      const double radius = double(record.param0);
+      if (!(double(rho) < radius)) return 1.0;
+      record.aimed = 1;
+      record.aimSpread = rho;
+      record.aimAxis = glm::vec3(float(glm::dot(toCentre, tangent)), float(glm::dot(toCentre, bitangent)), 0.0f);
+      record.aimAccept = float(radius * radius);
+      return (double(rho) * double(rho)) / (radius * radius);
+    }
+    case LightType::Disk:
+    case LightType::Rect: {
+      // The closest point of the emitter to the sphere's centre gives the
+      // widest cone, so the largest 2h.
+      const double normal = glm::dot(toCentre, axis);
+      const double u = glm::dot(toCentre, tangent), v = glm::dot(toCentre, bitangent);
+      double outside2 = 0.0;
+      if (light.type == LightType::Disk) {
+        const double beyond = std::max(0.0, std::hypot(u, v) - light.radiusM);
+        outside2 = beyond * beyond;
+      } else {
+        const double bu = std::max(0.0, std::abs(u) - 0.5 * light.sizeM.x);
+        const double bv = std::max(0.0, std::abs(v) - 0.5 * light.sizeM.y);
+        outside2 = bu * bu + bv * bv;
+      }
+      const double closest = std::sqrt(normal * normal + outside2);
+      const double s = target.radius / closest + kSlack;
+      if (!(s * s < 0.5)) return 1.0;  // some origins see a wide cone: leave it analog
+      // The shader evaluates 2h in float; 1e-4 covers that rounding.
+      const double largest = std::min(1.0, 2.0 * oneMinusCosFromSin(s) * (1.0 + 1e-4));
+      record.aimed = 1;
+      record.aimWeightScale = float(1.0 / largest);
+      return 1.0 / double(record.aimWeightScale);  // exactly the scale the shader uses
+    }
+  }
+  return 1.0;
+}
+
 std::string sceneName(const Scene& scene) {
   return scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
 }
@@ -88,6 +196,8 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   const SpectrumRange& range = scene.spectrum;
   const Camera& camera = scene.camera;
   const CameraFrame frame = CameraFrame::fromCamera(camera);
+  const AimTarget target = aimTarget(camera);
+  plan.constants.weightUnits = 1;
 
   plan.pixelsX = uint32_t(camera.pixelsX);
   plan.pixelsY = uint32_t(camera.pixelsY);
@@ -144,9 +254,16 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
           break;
         case LightType::Point: break;
       }
+      if (options.aim) summary.largestWeight = aimLight(light, position, axis, tangent, bitangent, target, record);
+      summary.aimed = record.aimed != 0;
       plan.lights.push_back(record);
-      selectWeights.push_back(summary.tracedPowerW);
+      // Selection in proportion to power x largest weight: each light's
+      // weight ratios are then <= 1 and its beams share one scale.
+      selectWeights.push_back(summary.tracedPowerW * summary.largestWeight);
       plan.tracedPowerW += summary.tracedPowerW;
+      plan.sampledPowerW += summary.tracedPowerW * summary.largestWeight;
+      if (record.aimed && (light.type == LightType::Disk || light.type == LightType::Rect))
+        plan.constants.weightUnits = device::kWeightUnitsFractional;
     }
     if (!summary.traced) summary.tracedPowerW = 0.0;
     plan.summaries.push_back(summary);
@@ -183,6 +300,8 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   c.cmfLambdaMin = float(observer.lambdaNm.front());
   c.cmfNodesPerNm = float((observer.lambdaNm.size() - 1) / (observer.lambdaNm.back() - observer.lambdaNm.front()));
   c.seed = seed;
+  c.aimCentre = toFloat(target.centre);
+  c.aimRadius = floatAtLeast(target.radius);
   if (options.trimSpectrum) {
     // The lowest and highest bin any sample can fall in, from the very float
     // operations of the shader (beam_trace.h): an interval's wavelengths run
@@ -198,7 +317,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
     c.binOffset = first;
     c.bins = last - first + 1;
   }
-  c.countersPerPixel = c.bins + (options.exactColour ? 3u : 0u);
+  c.countersPerPixel = c.bins + (options.exactColour ? 3u : 0u) + (plan.weighted() ? 1u : 0u);
   return plan;
 }
 

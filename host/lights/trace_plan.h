@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cpu/spectral_histogram.h"
 #include "device_shared.h"
 #include "scene/scene.h"
 
@@ -17,6 +18,10 @@ struct LightSummary {
   double inRangeShare = 0.0;  // share of the emission inside the spectrum range
   double tracedPowerW = 0.0;  // powerW * inRangeShare
   bool traced = false;        // false: never sampled
+  bool aimed = false;         // beams drawn only towards the camera
+  // Aimed: the largest weight a beam can carry, about the share of the
+  // light's emission that is sampled (1 when not aimed).
+  double largestWeight = 1.0;
   std::string notTracedBecause;  // why, when not traced
 };
 
@@ -27,6 +32,10 @@ struct TracePlan {
   std::vector<glm::vec3> cmfTable;      // the observer's CMF nodes, for exact colour
   std::vector<LightSummary> summaries;  // one per scene light, in scene order
   double tracedPowerW = 0.0;            // sum over traced lights
+  // Sum over traced lights of power x largest weight: the power a
+  // full-weight beam stands for, times the beam count (= tracedPowerW
+  // without aiming).
+  double sampledPowerW = 0.0;
   double pixelAreaM2 = 0.0;
   double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;  // bins of the full spectrum (host histograms, output)
@@ -35,12 +44,24 @@ struct TracePlan {
   uint32_t storedBins() const { return constants.bins; }
 
   uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
+  bool weighted() const { return constants.weightUnits != 1; }
+  // An all-zero histogram of this plan's shape (all bins of the spectrum).
+  SpectralHistogram emptyHistogram() const {
+    return SpectralHistogram(pixelsX, pixelsY, bins, exactColour(), constants.weightUnits);
+  }
+  bool hasShapeOf(const SpectralHistogram& h) const {
+    return h.pixelsX == pixelsX && h.pixelsY == pixelsY && h.bins == bins && h.hasExactColour() == exactColour() &&
+           h.unitsPerBeam == constants.weightUnits;
+  }
   bool exactColour() const { return constants.exactColour != 0; }
   uint32_t countersPerPixel() const { return constants.countersPerPixel; }
-  // W/m^2 per bin carried by one count when `beams` beams were traced: each
-  // beam carries tracedPowerW * exposure / beams joules, spread over one
-  // pixel's area and the exposure time (which cancels).
-  double irradiancePerCount(uint64_t beams) const { return tracedPowerW / (double(beams) * pixelAreaM2); }
+  // W/m^2 per bin carried by one count when `beams` beams were traced: a
+  // full-weight beam carries sampledPowerW * exposure / beams joules, spread
+  // over one pixel's area and the exposure time (which cancels), and adds
+  // weightUnits counts.
+  double irradiancePerCount(uint64_t beams) const {
+    return sampledPowerW / (double(beams) * pixelAreaM2 * double(constants.weightUnits));
+  }
 };
 
 struct TracePlanOptions {
@@ -54,6 +75,10 @@ struct TracePlanOptions {
   // Store only the wavelength bins the traced lights can reach (a 532 nm
   // laser needs one); off: store the whole spectrum range.
   bool trimSpectrum = true;
+  // Draw beams only towards the camera (the pinhole, or the bare sensor),
+  // weighted so the estimate is unbiased; off: analog emission (the
+  // reference path).
+  bool aim = true;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be

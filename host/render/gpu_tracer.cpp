@@ -23,7 +23,7 @@ Buffer uploadedBuffer(const vk_util::Context& context, const std::vector<T>& dat
 std::vector<vk_util::BindingSpec> traceBindings() {
   return {{device::kBindingTraceConstants}, {device::kBindingLights}, {device::kBindingSpectralIntervals},
           {device::kBindingHistogram, device::kMaxHistogramChunks}, {device::kBindingBeamRecords},
-          {device::kBindingCmfTable}};
+          {device::kBindingCmfTable}, {device::kBindingTraceStats}};
 }
 
 // 2D dispatch shape for `count` invocations: rows of at most the device's
@@ -37,13 +37,17 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
   return {groupsX, uint32_t((groups + groupsX - 1) / groupsX), groupsX * workgroupSize};
 }
 
-// Specialisation constants 2..5 of trace_beams.comp (device_shared.h, kSpec*).
+// Specialisation constants 2..6 of trace_beams.comp (device_shared.h, kSpec*).
 std::vector<uint32_t> traceSpecialisation(const TracePlan& plan, bool specialise) {
-  if (!specialise) return {31u, 1u, 2u, 2u};
+  if (!specialise) return {31u, 1u, 2u, 2u, 2u};
   uint32_t types = 0;
-  for (const auto& light : plan.lights) types |= 1u << light.type;
+  bool aimed = false;
+  for (const auto& light : plan.lights) {
+    types |= 1u << light.type;
+    aimed = aimed || light.aimed != 0;
+  }
   return {types, plan.lights.size() > 1 ? 1u : 0u, plan.constants.apertureDistance > 0.0f ? 1u : 0u,
-          plan.exactColour() ? 1u : 0u};
+          plan.exactColour() ? 1u : 0u, aimed ? 1u : 0u};
 }
 
 // Specialisation constants in constant_id order.
@@ -87,6 +91,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
       intervals_(uploadedBuffer(context, plan.intervals)),
       unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
       cmfTable_(uploadedBuffer(context, plan.cmfTable)),
+      stats_(context, sizeof(device::TraceStats), {}, MemoryPlacement::HostVisible),
       tracePipeline_(context, embedded::spv_trace_beams(),
                      traceBindings(), sizeof(device::TracePush), specConstants(workgroupSize, false, traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(),
@@ -106,6 +111,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
   tracePipeline_.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
   tracePipeline_.bindBuffer(device::kBindingBeamRecords, 0, unusedBeamRecords_);
   tracePipeline_.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
+  tracePipeline_.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c) {
@@ -118,6 +124,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
 
 void GpuTracer::clearHistogram() {
   for (auto& chunk : histogramChunks_) chunk.fillZero();
+  stats_.fillZero();
 }
 
 uint64_t GpuTracer::maxBeamsPerDispatch() const {
@@ -146,10 +153,11 @@ double GpuTracer::trace(uint64_t firstBeam, uint64_t beamCount) {
   return seconds;
 }
 
-std::vector<glm::uvec2> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
+std::vector<device::BeamRecord> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
   vk_util::ComputePipeline recorder(context_, embedded::spv_trace_beams(), traceBindings(), sizeof(device::TracePush),
                                     specConstants(workgroupSize_, true, traceSpecialisation_));
-  Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(glm::uvec2), 16), {}, MemoryPlacement::HostVisible);
+  Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(device::BeamRecord), 16), {},
+                 MemoryPlacement::HostVisible);
   recorder.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
   recorder.bindBuffer(device::kBindingLights, 0, lights_);
   recorder.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
@@ -157,11 +165,12 @@ std::vector<glm::uvec2> GpuTracer::traceRecorded(uint64_t firstBeam, uint32_t co
     recorder.bindBuffer(device::kBindingHistogram, c, histogramChunks_[c < split_.chunkCount ? c : 0]);
   recorder.bindBuffer(device::kBindingBeamRecords, 0, records);
   recorder.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
+  recorder.bindBuffer(device::kBindingTraceStats, 0, stats_);  // left untouched in record mode
   const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
   const device::TracePush push{firstBeam, count, shape.invocationsPerRow};
   context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) { recorder.recordDispatch(cb, &push, shape.groupsX, shape.groupsY); });
-  std::vector<glm::uvec2> result(count);
-  records.download(result.data(), uint64_t(count) * sizeof(glm::uvec2));
+  std::vector<device::BeamRecord> result(count);
+  records.download(result.data(), uint64_t(count) * sizeof(device::BeamRecord));
   return result;
 }
 
@@ -182,7 +191,10 @@ std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t se
 }
 
 SpectralHistogram GpuTracer::downloadHistogram() const {
-  SpectralHistogram histogram(plan_.pixelsX, plan_.pixelsY, plan_.bins, plan_.exactColour());
+  SpectralHistogram histogram = plan_.emptyHistogram();
+  device::TraceStats stats{};
+  stats_.download(&stats, sizeof(stats));
+  histogram.countedBeams = stats.countedBeams;
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (const auto& chunk : histogramChunks_) {
@@ -195,9 +207,10 @@ SpectralHistogram GpuTracer::downloadHistogram() const {
 }
 
 void GpuTracer::uploadHistogram(const SpectralHistogram& histogram) {
-  if (histogram.pixelsX != plan_.pixelsX || histogram.pixelsY != plan_.pixelsY || histogram.bins != plan_.bins ||
-      histogram.hasExactColour() != plan_.exactColour())
+  if (!plan_.hasShapeOf(histogram))
     throw std::invalid_argument("uploadHistogram: the histogram's shape differs from the trace plan's");
+  const device::TraceStats stats{histogram.countedBeams};
+  stats_.upload(&stats, sizeof(stats));
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (auto& chunk : histogramChunks_) {
@@ -220,7 +233,9 @@ void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& pla
         throw std::invalid_argument("counts in bins the trimmed spectrum does not store");
     }
     std::copy_n(bins + first, stored, dst);
-    if (plan.exactColour()) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + stored);
+    uint64_t* next = dst + stored;
+    if (plan.exactColour()) next = std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, next);
+    if (plan.weighted()) *next = histogram.squaredWeightSums[pixel];
   }
 }
 
@@ -231,7 +246,12 @@ void unpackDeviceCounters(std::span<const uint64_t> counters, const TracePlan& p
     const size_t pixel = firstPixel + local;
     const uint64_t* src = counters.data() + local * stride;
     std::copy(src, src + stored, histogram.counts.begin() + pixel * plan.bins + plan.firstStoredBin());
-    if (plan.exactColour()) std::copy(src + stored, src + stride, histogram.colourSums.begin() + pixel * 3);
+    const uint64_t* next = src + stored;
+    if (plan.exactColour()) {
+      std::copy_n(next, 3, histogram.colourSums.begin() + pixel * 3);
+      next += 3;
+    }
+    if (plan.weighted()) histogram.squaredWeightSums[pixel] = *next;
   }
 }
 

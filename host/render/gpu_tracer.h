@@ -27,8 +27,9 @@ struct HistogramSplit {
 };
 
 // The device's counter layout for a plan: per pixel, countersPerPixel
-// 64-bit counters, the stored bins then (with exact colour) X, Y, Z. The
-// host histogram has every bin of the spectrum.
+// 64-bit counters, the stored bins then (with exact colour) X, Y, Z, then
+// (with fractional weights) the squared weights. The host histogram has
+// every bin of the spectrum.
 // Packs pixels [firstPixel, firstPixel + out.size() / countersPerPixel).
 void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& plan, size_t firstPixel,
                         std::span<uint64_t> out);
@@ -59,8 +60,9 @@ class GpuTracer {
   RenderImage resolve(const ResolveParameters& parameters, double* seconds = nullptr);
 
   // Traces beams [firstBeam, firstBeam + count) without counting them and
-  // returns each beam's (pixel, bin), or kBeamMissed twice for a miss.
-  std::vector<glm::uvec2> traceRecorded(uint64_t firstBeam, uint32_t count);
+  // returns each beam's pixel, bin and units, or pixel kBeamMissed for a
+  // beam that would not be counted.
+  std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count);
 
   const HistogramSplit& split() const { return split_; }
   uint64_t maxBeamsPerDispatch() const;
@@ -76,6 +78,7 @@ class GpuTracer {
   vk_util::Buffer intervals_;
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
   vk_util::Buffer cmfTable_;
+  vk_util::Buffer stats_;  // TraceStats
   std::vector<vk_util::Buffer> histogramChunks_;
   vk_util::ComputePipeline tracePipeline_;
   vk_util::ComputePipeline resolvePipeline_;

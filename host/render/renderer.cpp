@@ -71,6 +71,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   TracePlanOptions planOptions;
   planOptions.exactColour = options.exactColour;
   planOptions.trimSpectrum = options.trimSpectrum;
+  planOptions.aim = options.aim;
   result.plan = buildTracePlan(scene, options.seed, planOptions);
   const TracePlan& plan = result.plan;
 
@@ -85,7 +86,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const unsigned threads = options.cpuThreads ? options.cpuThreads : std::max(1u, std::thread::hardware_concurrency());
     result.deviceKind = "cpu";
     result.deviceName = fmt::format("CPU reference, {} threads", threads);
-    result.histogram = SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
+    result.histogram = plan.emptyHistogram();
   }
   if (options.log)
     options.log(fmt::format("device: {} ({})", result.deviceName, result.deviceKind == "gpu" ? "Vulkan" : "C++"));

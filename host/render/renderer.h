@@ -27,6 +27,7 @@ struct RenderOptions {
   bool exactColour = true;           // per-beam CMF sums (see TracePlanOptions)
   bool specialise = true;            // GPU: a trace pipeline compiled for the scene
   bool trimSpectrum = true;          // store only the bins the lights can reach
+  bool aim = true;                   // beams only towards the camera, weighted (see TracePlanOptions)
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints

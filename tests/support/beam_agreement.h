@@ -1,0 +1,59 @@
+#pragma once
+// Beam-by-beam comparison of the Vulkan trace with the CPU reference: for
+// each beam, whether it is counted, its pixel, bin and weight units.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "cpu/beam_kernel.h"
+#include "lights/trace_plan.h"
+#include "render/gpu_tracer.h"
+#include "support/test_scenes.h"
+
+namespace spectrace::testing {
+
+struct BeamAgreement {
+  uint64_t same = 0, hits = 0, differ = 0;
+  double rate = 0.0;  // same / count
+};
+
+inline bool sameRecord(const device::BeamRecord& a, const device::BeamRecord& b) {
+  return a.pixel == b.pixel && a.bin == b.bin && a.units == b.units;
+}
+
+// The CPU's record of beam `index`, as the shader's record mode writes it.
+inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) {
+  uint32_t pixel = 0, bin = 0;
+  uint64_t units = 0;
+  if (!kernel.trace(index, pixel, bin, &units)) return {device::kBeamMissed, device::kBeamMissed, 0u, 0u};
+  return {pixel, bin, uint32_t(units), 0u};
+}
+
+// Traces beams [firstBeam, firstBeam + count) on both devices, prints the
+// first few differences and the totals, and records the agreement rate as a
+// test property.
+inline BeamAgreement beamByBeam(const TracePlan& plan, uint64_t firstBeam, uint32_t count, const std::string& name) {
+  GpuTracer gpu(sharedVulkan(), plan);
+  const auto records = gpu.traceRecorded(firstBeam, count);
+  device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
+  BeamAgreement result;
+  for (uint32_t i = 0; i < count; ++i) {
+    const device::BeamRecord expected = cpuRecord(cpu, firstBeam + i);
+    result.hits += expected.pixel != device::kBeamMissed;
+    if (sameRecord(expected, records[i])) {
+      ++result.same;
+    } else if (++result.differ <= 5) {
+      std::printf("  %s: beam %llu differs: cpu (pixel %u, bin %u, units %u), gpu (pixel %u, bin %u, units %u)\n",
+                  name.c_str(), (unsigned long long)(firstBeam + i), expected.pixel, expected.bin, expected.units,
+                  records[i].pixel, records[i].bin, records[i].units);
+    }
+  }
+  result.rate = double(result.same) / double(count);
+  std::printf("%s: CPU/GPU beam by beam: %llu of %u identical (%.6f%%), %llu counted\n", name.c_str(),
+              (unsigned long long)result.same, count, 100.0 * result.rate, (unsigned long long)result.hits);
+  ::testing::Test::RecordProperty(propertyKey(name + "_agreement"), std::to_string(result.rate));
+  return result;
+}
+
+}  // namespace spectrace::testing

@@ -1,0 +1,98 @@
+#pragma once
+// Do two renders of one scene (aimed and analog, skipped and unskipped, ...)
+// have the same expected image? Pixel by pixel within their combined
+// standard errors (5 sigma), globally by chi-square, and in total.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <boost/math/distributions/chi_squared.hpp>
+
+#include "cpu/spectral_histogram.h"
+#include "lights/trace_plan.h"
+
+namespace spectrace::testing {
+
+// Per-pixel irradiance of a render, and its variance model Var(E) = v E.
+// A pixel's estimate is k C (C its counts, k the irradiance per count). With
+// plain hit counts (Poisson) v = k. With weighted counts,
+// Var(E) = k^2 U S2 (S2 the squared-weight sum in the same units as C, U
+// the units per beam), so v = k U S2 / C; where C = 0 the image-wide
+// S2 / C stands in.
+struct PixelEstimates {
+  std::vector<double> irradiance;
+  std::vector<double> variancePerMean;
+  uint64_t countedBeams = 0;
+  double totalVariance = 0.0;  // sum over pixels of v E
+};
+
+inline PixelEstimates pixelEstimates(const SpectralHistogram& h, const TracePlan& plan, uint64_t beams) {
+  const double k = plan.irradiancePerCount(beams), units = double(h.unitsPerBeam);
+  const size_t pixels = size_t(h.pixelsX) * h.pixelsY;
+  std::vector<double> counts(pixels, 0.0);
+  double allCounts = 0.0, allSquares = 0.0;
+  for (size_t p = 0; p < pixels; ++p) {
+    for (uint32_t b = 0; b < h.bins; ++b) counts[p] += double(h.counts[p * h.bins + b]);
+    allCounts += counts[p];
+    if (h.isWeighted()) allSquares += double(h.squaredWeightSums[p]);
+  }
+  const double globalShape = h.isWeighted() && allCounts > 0.0 ? units * allSquares / allCounts : 1.0;
+  PixelEstimates out;
+  out.countedBeams = h.countedBeams;
+  for (size_t p = 0; p < pixels; ++p) {
+    double shape = 1.0;
+    if (h.isWeighted()) shape = counts[p] > 0.0 ? units * double(h.squaredWeightSums[p]) / counts[p] : globalShape;
+    out.irradiance.push_back(k * counts[p]);
+    out.variancePerMean.push_back(k * shape);
+    out.totalVariance += k * shape * k * counts[p];
+  }
+  return out;
+}
+
+struct RenderComparison {
+  int cells = 0;
+  double chi2 = 0.0, pValue = 1.0, worstZ = 0.0, totalZ = 0.0;
+};
+
+// Compares two renders' pixels where together they expect at least
+// `minHits` effective counts (E / v summed over both; below that the normal
+// approximation fails). Under the hypothesis of equal expectations E, the
+// best estimate of E weights each side by 1 / v, and
+// Var(E1 - E2) = (v1 + v2) E; estimating each side's variance from its own
+// count would understate it where that count is low. Adds a failure for
+// any pixel beyond 5 sigma and for a total beyond 5 sigma.
+inline RenderComparison compareRenders(const PixelEstimates& a, const PixelEstimates& b, const std::string& name,
+                                       double minHits = 20.0) {
+  RenderComparison result;
+  double totalA = 0.0, totalB = 0.0;
+  int failures = 0;
+  for (size_t p = 0; p < a.irradiance.size(); ++p) {
+    totalA += a.irradiance[p];
+    totalB += b.irradiance[p];
+    const double va = a.variancePerMean[p], vb = b.variancePerMean[p];
+    const double pooled = (a.irradiance[p] / va + b.irradiance[p] / vb) / (1.0 / va + 1.0 / vb);
+    if (pooled / va + pooled / vb < minHits) continue;
+    const double z = (a.irradiance[p] - b.irradiance[p]) / std::sqrt((va + vb) * pooled);
+    if (std::abs(z) >= 5.0 && ++failures <= 10)
+      ADD_FAILURE() << name << ": pixel " << p << ": " << a.irradiance[p] << " vs " << b.irradiance[p] << " W/m^2, "
+                    << z << " sigma";
+    result.worstZ = std::max(result.worstZ, std::abs(z));
+    result.chi2 += z * z;
+    ++result.cells;
+  }
+  result.totalZ = (totalA - totalB) / std::sqrt(a.totalVariance + b.totalVariance);
+  EXPECT_LT(std::abs(result.totalZ), 5.0) << name << ": total " << totalA << " vs " << totalB;
+  if (result.cells > 0)
+    result.pValue = boost::math::cdf(boost::math::complement(boost::math::chi_squared(result.cells), result.chi2));
+  std::printf("%s: %llu vs %llu beams counted; %d pixels compared, chi2/dof %.3f (p %.4f), worst %.2f sigma, "
+              "total %+.2f sigma\n",
+              name.c_str(), (unsigned long long)a.countedBeams, (unsigned long long)b.countedBeams, result.cells,
+              result.cells ? result.chi2 / result.cells : 0.0, result.pValue, result.worstZ, result.totalZ);
+  return result;
+}
+
+}  // namespace spectrace::testing
