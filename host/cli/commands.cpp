@@ -17,8 +17,8 @@ std::filesystem::path defaultOutput(const std::filesystem::path& scene) {
   return std::filesystem::path("out") / (scene.stem().string() + ".exr");
 }
 
-ImageMetadata metadataFor(const Scene& scene, const std::string& device, uint64_t seed, uint64_t firstBeam,
-                          uint64_t beamsDone, double wallSeconds) {
+ImageMetadata metadataFor(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
+                          uint64_t firstBeam, uint64_t beamsDone, double wallSeconds) {
   ImageMetadata meta;
   meta.strings["spectrace:beams"] = std::to_string(beamsDone);
   meta.strings["spectrace:first_beam"] = std::to_string(firstBeam);
@@ -34,6 +34,7 @@ ImageMetadata metadataFor(const Scene& scene, const std::string& device, uint64_
   meta.numbers["spectrace:spectrum_max_nm"] = scene.spectrum.maxNm;
   meta.numbers["spectrace:spectrum_bins"] = scene.spectrum.bins;
   meta.numbers["spectrace:exposure_s"] = scene.camera.exposureS;
+  meta.strings["spectrace:sampling"] = aimed ? "aimed at the camera, weighted" : "analog";
   return meta;
 }
 
@@ -55,13 +56,14 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   options.checkpointSeconds = command.checkpointSeconds;
   options.trimSpectrum = !command.fullSpectrum;
   options.specialise = !command.general;
+  options.aim = !command.noAim;
   if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
 
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // A checkpoint is a complete, valid image of the beams finished so far.
   options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
-    writeExr(output, image, metadataFor(scene, device, options.seed, options.firstBeam, done, elapsed()));
+    writeExr(output, image, metadataFor(scene, device, options.aim, options.seed, options.firstBeam, done, elapsed()));
     if (!command.quiet) std::fprintf(stderr, "spectrace: checkpoint: %llu beams -> %s\n", (unsigned long long)done, output.c_str());
   };
   if (!command.quiet) {
@@ -78,17 +80,25 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
       if (!light.traced)
         std::fprintf(stderr, "spectrace: note: %s is never sampled: %s\n", light.label.c_str(),
                      light.notTracedBecause.c_str());
+      else if (light.aimed)
+        std::fprintf(stderr, "spectrace: %s: beams aimed at the camera (largest weight %.3g)\n", light.label.c_str(),
+                     light.largestWeight);
     }
   }
-  writeExr(output, result.image, metadataFor(scene, result.deviceLabel(), options.seed, options.firstBeam, result.beamsTraced, result.wallSeconds));
+  writeExr(output, result.image, metadataFor(scene, result.deviceLabel(), options.aim, options.seed, options.firstBeam,
+                                             result.beamsTraced, result.wallSeconds));
   if (command.png) writePngPreview(png, result.image);
   if (!command.quiet) {
     std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,
                  result.wallSeconds, double(result.beamsTraced) / result.wallSeconds * 1e-6, result.deviceName.c_str());
     const auto& counts = result.histogram.counts;
     const uint64_t largest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
-    std::fprintf(stderr, "spectrace: %llu beams counted (exact); the largest pixel-bin holds %llu\n",
-                 (unsigned long long)result.histogram.total(), (unsigned long long)largest);
+    const uint64_t counted = result.histogram.countedBeams;
+    std::fprintf(stderr, "spectrace: %llu beams counted (%.3g%% of those traced); the largest pixel-bin holds %llu %s\n",
+                 (unsigned long long)counted,
+                 result.beamsTraced ? 100.0 * double(counted) / double(result.beamsTraced) : 0.0,
+                 (unsigned long long)largest,
+                 result.histogram.isWeighted() ? "units of 2^-24 beam" : "beams");
     std::fprintf(stderr, "spectrace: wrote %s%s\n", output.c_str(), command.png ? (" and " + png.string()).c_str() : "");
   }
   if (result.beamsTraced < options.beams) {

@@ -21,6 +21,7 @@ struct RenderCommand {
   double checkpointSeconds = 60.0;
   bool fullSpectrum = false;   // store every bin, not only those the lights reach
   bool general = false;        // the general trace pipeline, not one specialised to the scene
+  bool noAim = false;          // analog emission: beams in every direction the lights emit
 };
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 
@@ -34,7 +35,7 @@ struct BenchCommand {
   std::filesystem::path scenesDir;      // reference scenes (default scenes/reference)
   double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
   uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
-  bool throughput = true, sweep = true, colour = true, specialisation = true;
+  bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true;
 };
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
 

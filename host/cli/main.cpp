@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
                       "Store every wavelength bin on the device, not only those the lights can reach");
   renderCmd->add_flag("--general-pipeline", render.general,
                       "Use the general trace pipeline instead of one specialised to the scene");
+  renderCmd->add_flag("--no-aim", render.noAim,
+                      "Analog emission (the reference): do not aim beams at the pinhole or sensor");
   renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
                         "Write the image so far at this interval (0: never)");
 
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-sweep", bench.sweep, "Skip the error sweep");
   benchCmd->add_flag("!--no-colour", bench.colour, "Skip the colour-from-binning study");
   benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
+  benchCmd->add_flag("!--no-aim-study", bench.aim, "Skip the aimed-vs-analog comparison");
 
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, onSignal);

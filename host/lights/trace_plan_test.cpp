@@ -1,0 +1,111 @@
+// The trace plan's aiming decisions and weights, against closed forms.
+#include "lights/trace_plan.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/scene_builders.h"
+
+namespace spectrace {
+namespace {
+
+Scene pinholeScene(double distanceM, double radiusM) {
+  Scene scene = bareSensorScene(0.036, 0.024, 36, 24, 16);
+  scene.camera.pinhole = Pinhole{distanceM, radiusM};
+  return scene;
+}
+
+// 1 - cos(asin(s)).
+double oneMinusCos(double s) { return s * s / (1.0 + std::sqrt(1.0 - s * s)); }
+
+TEST(AimedPlan, PointLightSamplesTheConeOfThePinhole) {
+  // A point light 1 m in front of a 0.5 mm pinhole at 50 mm: the cone holding
+  // the pinhole's sphere has 1 - cos = h with sin = r / d, and the largest
+  // (and only) weight is its share of the sphere, h / 2. The slack added to
+  // the sine (4e-7 against r / d = 5e-4) changes h by under 2e-3 relative.
+  Scene scene = pinholeScene(0.05, 0.0005);
+  scene.lights = {pointLight({0.0, 0.0, 1.05}, 2.0, *cieIlluminant("D65"))};
+  const TracePlan plan = buildTracePlan(scene, 1);
+  ASSERT_EQ(plan.lights.size(), 1u);
+  EXPECT_EQ(plan.lights[0].aimed, 1u);
+  const double exact = 0.5 * oneMinusCos(0.0005 / 1.0);
+  EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
+  EXPECT_GT(plan.summaries[0].largestWeight, exact) << "the sampled cone must hold the whole pinhole";
+  EXPECT_NEAR(plan.sampledPowerW, plan.tracedPowerW * plan.summaries[0].largestWeight, 1e-15);
+  EXPECT_FALSE(plan.weighted()) << "point-light weights are all 1: plain hit counts";
+  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u);
+}
+
+TEST(AimedPlan, LightChoiceFollowsPowerTimesLargestWeight) {
+  // Two equal point lights, at 0.5 m and 1 m: the nearer sees the pinhole
+  // under 4x the solid angle, so it gets 4/5 of the beams.
+  Scene scene = pinholeScene(0.05, 0.0005);
+  scene.lights = {pointLight({0.0, 0.0, 0.55}, 1.0, *cieIlluminant("D65")),
+                  pointLight({0.0, 0.0, 1.05}, 1.0, *cieIlluminant("D65"))};
+  const TracePlan plan = buildTracePlan(scene, 1);
+  ASSERT_EQ(plan.lights.size(), 2u);
+  const double shareOfFirst = double(plan.lights[1].selectCdfLow) / 18446744073709551616.0;
+  EXPECT_NEAR(shareOfFirst, 0.8, 2e-3);
+}
+
+TEST(AimedPlan, AimsOnlyWhereItNarrowsTheSampling) {
+  Scene scene = pinholeScene(0.05, 0.0005);
+  // A spot narrower than the cone towards the pinhole, a laser thinner than
+  // the pinhole, a point light inside the pinhole's sphere and a panel
+  // almost touching it stay analog.
+  Light spot = surfaceLight(LightType::Spot, {0.0, 0.0, 0.06}, {0, 0, -1}, 1.0, *cieIlluminant("A"));
+  spot.coneHalfAngleDeg = 0.5;  // the pinhole subtends 2.9 degrees from 10 mm
+  Light laser = surfaceLight(LightType::Laser, {0.0, 0.0, 0.2}, {0, 0, -1}, 1.0, makeLineSpd(532.0));
+  laser.radiusM = 0.0002;
+  Light inside = pointLight({0.0001, 0.0, 0.0502}, 1.0, *cieIlluminant("A"));
+  Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.0505}, {0, 0, -1}, 1.0, *cieIlluminant("A"));
+  panel.radiusM = 0.01;
+  scene.lights = {spot, laser, inside, panel};
+  const TracePlan plan = buildTracePlan(scene, 1);
+  ASSERT_EQ(plan.lights.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(plan.lights[i].aimed, 0u) << plan.summaries[i].label;
+    EXPECT_EQ(plan.summaries[i].largestWeight, 1.0) << plan.summaries[i].label;
+  }
+  EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
+  EXPECT_FALSE(plan.weighted());
+}
+
+TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
+  // A disk 1 m away: its closest point sees the pinhole's sphere under
+  // sin = r / 1 m, so the largest weight 2h (times 1 + 1e-4 for the shader's
+  // float rounding).
+  Scene scene = pinholeScene(0.05, 0.0005);
+  Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 1.05}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
+  disk.radiusM = 0.1;
+  scene.lights = {disk};
+  const TracePlan plan = buildTracePlan(scene, 1);
+  EXPECT_EQ(plan.lights[0].aimed, 1u);
+  EXPECT_TRUE(plan.weighted());
+  EXPECT_EQ(plan.constants.weightUnits, device::kWeightUnitsFractional);
+  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u + 1u);
+  const double exact = 2.0 * oneMinusCos(0.0005);
+  EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
+  EXPECT_NEAR(double(plan.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
+  const SpectralHistogram h = plan.emptyHistogram();
+  EXPECT_TRUE(h.isWeighted());
+  EXPECT_EQ(h.squaredWeightSums.size(), plan.pixelCount());
+}
+
+TEST(AimedPlan, NoAimIsTheAnalogPlan) {
+  Scene scene = pinholeScene(0.05, 0.0005);
+  Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 1.05}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
+  disk.radiusM = 0.1;
+  scene.lights = {disk, pointLight({0.0, 0.0, 1.05}, 2.0, *cieIlluminant("A"))};
+  TracePlanOptions options;
+  options.aim = false;
+  const TracePlan plan = buildTracePlan(scene, 1, options);
+  for (const auto& light : plan.lights) EXPECT_EQ(light.aimed, 0u);
+  EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
+  EXPECT_FALSE(plan.weighted());
+  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u);
+}
+
+}  // namespace
+}  // namespace spectrace

@@ -1,0 +1,166 @@
+// Aimed sampling must not change expected values: aimed and analog
+// (--no-aim) renders of the same scene agree within their combined standard
+// errors, for every light type, with a bare sensor and through a pinhole,
+// pixel by pixel and in total (5 sigma) and globally (chi-square p > 1e-3).
+// Aiming must also pay: more of the traced beams are counted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "cpu/beam_kernel.h"
+#include "lights/trace_plan.h"
+#include "render/gpu_tracer.h"
+#include "support/render_comparison.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+using testing::pointLight;
+using testing::surfaceLight;
+
+// One light of each type, placed so that aiming applies (the bare sensor's
+// target sphere has radius 14 mm; the pinhole's 1 mm) and some of its
+// awkward cases occur: the spot's cone edge crosses the target, the tilted
+// disk and rect see the target off their normals, the laser is wider than
+// the target, so some aimed origins fall outside it.
+Light lightOfType(LightType type) {
+  const Spd spd = *cieIlluminant("D65");
+  switch (type) {
+    case LightType::Point: return pointLight({0.002, 0.001, 0.03}, 1.0, spd);
+    case LightType::Spot: {
+      Light spot = surfaceLight(LightType::Spot, {0.0, 0.0, 0.04}, glm::normalize(glm::dvec3(0.5, 0.0, -1.0)), 1.0, spd);
+      spot.coneHalfAngleDeg = 40.0;
+      return spot;
+    }
+    case LightType::Disk: {
+      Light disk = surfaceLight(LightType::Disk, {0.003, 0.0, 0.06}, glm::normalize(glm::dvec3(0.3, 0.1, -1.0)), 1.0, spd);
+      disk.radiusM = 0.005;
+      return disk;
+    }
+    case LightType::Rect: {
+      Light rect = surfaceLight(LightType::Rect, {-0.004, 0.002, 0.05}, glm::normalize(glm::dvec3(-0.2, 0.3, -1.0)), 1.0,
+                                spd);
+      rect.sizeM = {0.008, 0.004};
+      rect.uAxis = {1, 0, 0};
+      return rect;
+    }
+    case LightType::Laser: {
+      Light laser = surfaceLight(LightType::Laser, {0.004, -0.002, 0.04}, glm::normalize(glm::dvec3(0.05, 0.02, -1.0)),
+                                 1.0, spd);
+      laser.radiusM = 0.02;
+      return laser;
+    }
+  }
+  return {};
+}
+
+Scene aimScene(LightType type, bool pinhole) {
+  Scene scene = testing::bareSensorScene(0.02, 0.02, 16, 16, 16);
+  scene.lights = {lightOfType(type)};
+  if (pinhole) {
+    scene.camera.pinhole = Pinhole{0.01, 0.001};
+    scene.lights[0].position.z += 0.01;
+  }
+  return scene;
+}
+
+testing::PixelEstimates renderOnGpu(const TracePlan& plan, uint64_t beams) {
+  GpuTracer gpu(testing::sharedVulkan(), plan);
+  gpu.trace(0, beams);
+  return testing::pixelEstimates(gpu.downloadHistogram(), plan, beams);
+}
+
+struct AimCase {
+  LightType type;
+  bool pinhole;
+};
+
+class AimedVersusAnalog : public ::testing::TestWithParam<AimCase> {};
+
+TEST_P(AimedVersusAnalog, SameExpectedImage) {
+  const AimCase c = GetParam();
+  const Scene scene = aimScene(c.type, c.pinhole);
+  TracePlanOptions analogOptions;
+  analogOptions.aim = false;
+  const TracePlan aimed = buildTracePlan(scene, 101);
+  const TracePlan analog = buildTracePlan(scene, 202, analogOptions);
+  ASSERT_EQ(aimed.lights.size(), 1u);
+  EXPECT_EQ(aimed.lights[0].aimed, 1u) << "the scene is meant to be aimed";
+  EXPECT_EQ(analog.lights[0].aimed, 0u);
+  EXPECT_EQ(analog.sampledPowerW, analog.tracedPowerW);
+  // Area lights carry varying weights; the others weights of 1 or 0.
+  const bool area = c.type == LightType::Disk || c.type == LightType::Rect;
+  EXPECT_EQ(aimed.weighted(), area);
+
+  // Analog beams through a 1 mm pinhole are rare: give that side more.
+  const uint64_t aimedBeams = 2'000'000, analogBeams = c.pinhole ? 16'000'000 : 4'000'000;
+  const auto a = renderOnGpu(aimed, aimedBeams);
+  const auto b = renderOnGpu(analog, analogBeams);
+  const std::string name = std::string(lightTypeName(c.type)) + (c.pinhole ? ", pinhole" : ", bare sensor");
+  const auto comparison = testing::compareRenders(a, b, name + ": aimed vs analog");
+  EXPECT_GE(comparison.cells, c.pinhole ? 2 : 50) << name;
+  EXPECT_GT(comparison.pValue, 1e-3) << name;
+  // Per traced beam, aiming counts more beams: at least 1.5x here (the
+  // least is the laser on the bare sensor, 2x: its target's disk has half
+  // the laser's cross-section).
+  EXPECT_GT(double(a.countedBeams) / double(aimedBeams), 1.5 * double(b.countedBeams) / double(analogBeams)) << name;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLightType, AimedVersusAnalog,
+                         ::testing::Values(AimCase{LightType::Point, false}, AimCase{LightType::Point, true},
+                                           AimCase{LightType::Spot, false}, AimCase{LightType::Spot, true},
+                                           AimCase{LightType::Disk, false}, AimCase{LightType::Disk, true},
+                                           AimCase{LightType::Rect, false}, AimCase{LightType::Rect, true},
+                                           AimCase{LightType::Laser, false}, AimCase{LightType::Laser, true}),
+                         [](const auto& info) {
+                           return std::string(lightTypeName(info.param.type)) + (info.param.pinhole ? "Pinhole" : "Bare");
+                         });
+
+TEST(AimedSampling, MixedLightsKeepTheirSharesOfTheImage) {
+  // Light choice moves to power x largest weight: a faint point light close
+  // to a pinhole and a bright panel far from it still add up to the analog
+  // image.
+  Scene scene = aimScene(LightType::Disk, true);
+  scene.lights.push_back(pointLight({-0.001, 0.0, 0.025}, 0.05, *cieIlluminant("A")));
+  scene.lights.push_back(lightOfType(LightType::Rect));
+  scene.lights.back().position.z += 0.01;
+  TracePlanOptions analogOptions;
+  analogOptions.aim = false;
+  const TracePlan aimed = buildTracePlan(scene, 303);
+  const TracePlan analog = buildTracePlan(scene, 404, analogOptions);
+  const auto a = renderOnGpu(aimed, 2'000'000);
+  const auto b = renderOnGpu(analog, 24'000'000);
+  const auto comparison = testing::compareRenders(a, b, "three lights, pinhole: aimed vs analog");
+  EXPECT_GE(comparison.cells, 10);
+  EXPECT_GT(comparison.pValue, 1e-3);
+}
+
+TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
+  // A 550 nm line: every counted beam adds ybar(550) x ratio x 2^20 to Y and
+  // ratio x 2^24 to its bin, each rounded stochastically (variance <= 1/4
+  // unit^2 per beam), so over n counted beams the sums' ratio is
+  // ybar(550) / 16 to within 5 sigma of the rounding noise:
+  // 5 (sqrt(n) / 2) (1 / Y + 1 / B) relative.
+  Scene scene = aimScene(LightType::Disk, true);
+  scene.lights[0].spd = makeLineSpd(550.0);
+  const TracePlan plan = buildTracePlan(scene, 505);
+  ASSERT_TRUE(plan.weighted());
+  GpuTracer gpu(testing::sharedVulkan(), plan);
+  gpu.trace(0, 1'000'000);
+  const SpectralHistogram h = gpu.downloadHistogram();
+  double y = 0.0;
+  for (size_t p = 0; p < plan.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
+  const double units = double(h.total());
+  ASSERT_GT(h.countedBeams, 10'000u);
+  const float ybar = device::BeamKernel(plan.constants, plan.lights, plan.intervals, plan.cmfTable).cmfAtWavelength(550.0f).y;
+  const double expected = double(ybar) * device::kColourFixedPointScale / device::kWeightUnitsFractional;
+  const double tolerance = 2.5 * std::sqrt(double(h.countedBeams)) * (1.0 / y + 1.0 / units);
+  std::printf("Y sum / bin sum = %.9f, ybar(550) / 16 = %.9f (tolerance %.2g relative)\n", y / units, expected, tolerance);
+  EXPECT_NEAR(y / units / expected, 1.0, tolerance);
+}
+
+}  // namespace
+}  // namespace spectrace
