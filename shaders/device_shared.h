@@ -181,7 +181,7 @@ struct ResolveConstants {
   uint countersPerPixel;
   uint exactColour;          // 1: XYZ from the per-beam colour counters
   float irradiancePerCount;  // W/m^2 carried by one count (per bin)
-  float xyzPerColourUnit;    // 683 * irradiancePerCount / kColourFixedPointScale
+  float xyzPerColourUnit;    // 683 * (irradiance per full-weight beam) / kColourFixedPointScale
   float padding0;
   vec3 xyzToRgbRow0;         // linear sRGB = rows . XYZ
   vec3 xyzToRgbRow1;

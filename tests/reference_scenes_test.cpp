@@ -7,6 +7,8 @@
 // - bias: the mean signed relative error is within 5 sigma, where sigma is
 //   the standard error of that mean, sqrt(sum of estimated relative
 //   variances) / pixels;
+// - colour: the chromaticity and the luminance of the whole image are
+//   within 5 sigma;
 // - convergence: relRMSE over three beam counts falls with slope -0.5 +- 0.1.
 #include <gtest/gtest.h>
 
@@ -46,12 +48,24 @@ TEST_P(ReferenceScene, ErrorMatchesItsEstimateAndHasNoBias) {
   // Standard error of the mean relative error of independent pixels.
   const double biasSigma = m.estimatedRelRmse / std::sqrt(double(m.pixels));
   EXPECT_LE(std::abs(m.bias), 5.0 * biasSigma) << "bias " << m.bias << ", sigma " << biasSigma;
+  // Colour: the chromaticity of the whole image. x = X / (X + Y + Z) moves
+  // by at most (|dX/X| + |dS/S|) x <= 2 r x for relative errors <= r in
+  // X, Y, Z, and the image sums' relative errors are about biasSigma, so
+  // 5 sigma is 10 x biasSigma x 0.75 (x, y < 0.75). (Weighted colour sums
+  // scaled as counts once put every pinhole image's colour off by 2^24.)
+  // Luminance: the whole image's Y within 5 sigma, sigma = 2 x the
+  // estimated relative error of its irradiance (2 bounds the ybar spread;
+  // see ErrorMetrics::estimatedTotalRelError).
+  std::printf("  chromaticity error %.2e (bound %.2e), Y error %+.2e (bound %.2e)\n", m.meanChromaticityError,
+              7.5 * biasSigma, m.luminanceError, 10.0 * m.estimatedTotalRelError);
+  EXPECT_LE(m.meanChromaticityError, 7.5 * biasSigma);
+  EXPECT_LE(std::abs(m.luminanceError), 10.0 * m.estimatedTotalRelError);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllReferenceScenes, ReferenceScene,
                          ::testing::Values("point_on_axis", "point_off_axis", "disk_on_axis", "disk_off_axis",
                                            "furnace", "uniform_d65", "uniform_a", "uniform_f2", "uniform_f11",
-                                           "uniform_led_b3", "laser_532", "pinhole_rect"));
+                                           "uniform_led_b3", "laser_532", "pinhole_rect", "pinhole_small"));
 
 TEST(ReferenceConvergence, SlopeIsMinusOneHalf) {
   for (const char* name : {"disk_off_axis", "uniform_f11"}) {

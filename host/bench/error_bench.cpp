@@ -130,7 +130,7 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
         row.beams = beams;
         row.exactColour = options.exactColour;
         auto [image, histogram] = run.render(scene, beams, row);
-        row.hits = histogram.total();
+        row.hits = histogram.countedBeams;
         row.metrics = computeErrorMetrics(image, reference, estimatedRelativeVariance(histogram, beams));
         row.fom = figureOfMerit(row.metrics.relMse, row.wallSeconds);
         if (options.onRow) options.onRow(row);

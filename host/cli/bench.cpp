@@ -78,7 +78,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
                         o.cpuThreads = command.threads;
                         o.exactColour = exactColour;
                       });
-      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.total(),
+      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.countedBeams,
                         result.traceWallSeconds, result.traceDeviceSeconds};
       fmt::print("{:<44} {:<6} {:>9.3f} {:>10.2f} {:>15} {:>8.1f}%\n", row.deviceName, exactColour ? "exact" : "bins",
                  row.wallSeconds, double(row.beams) / row.wallSeconds * 1e-6,
@@ -158,7 +158,8 @@ std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
   // A fixed list, so the benchmark's rows are comparable between runs.
   std::vector<std::string> scenes;
   for (const char* name : {"point_on_axis", "point_off_axis", "disk_on_axis", "disk_off_axis", "furnace", "uniform_d65",
-                           "uniform_a", "uniform_f2", "uniform_f11", "uniform_led_b3", "laser_532", "pinhole_rect"})
+                           "uniform_a", "uniform_f2", "uniform_f11", "uniform_led_b3", "laser_532", "pinhole_rect",
+                           "pinhole_small"})
     scenes.push_back((dir / (std::string(name) + ".json")).string());
   return scenes;
 }

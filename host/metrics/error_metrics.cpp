@@ -83,6 +83,7 @@ ErrorMetrics computeErrorMetrics(const RenderImage& render, const ReferenceImage
   ErrorMetrics m;
   // Relative irradiance error, and the honesty sums over pixels with an estimate.
   double sumR = 0.0, sumR2 = 0.0, sumR2Est = 0.0, sumVar = 0.0;
+  double sumEref = 0.0, sumVarE = 0.0;  // for the whole image's estimated relative error
   size_t estimated = 0;
   // Whole-image XYZ sums (valid pixels) and the white for CIELAB.
   std::array<double, 3> sumRender{0, 0, 0}, sumRef{0, 0, 0};
@@ -102,10 +103,12 @@ ErrorMetrics computeErrorMetrics(const RenderImage& render, const ReferenceImage
     sumR2 += r * r;
     if (haveEstimate) {
       const double v = estimatedRelVariance[i];
+      sumEref += eref;
       if (std::isfinite(v)) {
         ++estimated;
         sumR2Est += r * r;
         sumVar += v;
+        sumVarE += v * eref * eref;
       } else {
         ++m.pixelsWithoutEstimate;
       }
@@ -118,6 +121,8 @@ ErrorMetrics computeErrorMetrics(const RenderImage& render, const ReferenceImage
   } else {
     m.relMse = m.relRmse = m.bias = kNaN;
   }
+  m.luminanceError = sumRef[1] > 0.0 ? (sumRender[1] - sumRef[1]) / sumRef[1] : kNaN;
+  m.estimatedTotalRelError = estimated > 0 && sumEref > 0.0 ? std::sqrt(sumVarE) / sumEref : kNaN;
   if (estimated > 0) {
     m.estimatedRelRmse = std::sqrt(sumVar / double(estimated));
     m.honesty = std::sqrt(sumR2Est / double(estimated)) / m.estimatedRelRmse;

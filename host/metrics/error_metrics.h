@@ -52,6 +52,13 @@ struct ErrorMetrics {
   // summed over valid pixels and that of the reference's (the colour of the
   // image as a whole).
   double meanChromaticityError = 0.0;
+  // Relative error of the whole image's Y (sum over valid pixels), and the
+  // estimated relative standard error of the whole image's irradiance,
+  // sqrt(sum v_i Eref_i^2) / sum Eref_i over pixels with an estimate (NaN
+  // without). Y's own noise is larger by sqrt(E[ybar^2] / E[ybar]^2) over
+  // the spectrum, at most ~2 for broad spectra.
+  double luminanceError = 0.0;
+  double estimatedTotalRelError = 0.0;
   // Honesty of the render's own error estimate, over the pixels of `pixels`
   // that have an estimate (finite estimated relative variance); the others
   // (e.g. zero counts) are skipped and counted in pixelsWithoutEstimate.

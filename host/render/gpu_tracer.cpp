@@ -264,7 +264,7 @@ device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolvePa
   constants.countersPerPixel = plan.countersPerPixel();
   constants.exactColour = parameters.useExactColour && plan.exactColour() ? 1u : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
-  constants.xyzPerColourUnit = float(683.0 * parameters.irradiancePerCount / device::kColourFixedPointScale);
+  constants.xyzPerColourUnit = float(683.0 * parameters.irradiancePerBeam / device::kColourFixedPointScale);
   // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
   const glm::dmat3& m = parameters.xyzToRgb;
   constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);

@@ -29,6 +29,7 @@ ResolveParameters resolveParametersFor(const Scene& scene, const TracePlan& plan
     for (double& v : w) v *= kLumensPerWatt;
   parameters.xyzToRgb = xyzToLinearSrgb();
   parameters.irradiancePerCount = beams > 0 ? plan.irradiancePerCount(beams) : 0.0;
+  parameters.irradiancePerBeam = parameters.irradiancePerCount * double(plan.constants.weightUnits);
   return parameters;
 }
 
