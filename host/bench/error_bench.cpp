@@ -120,6 +120,7 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
       const ReferenceImage reference = toReference(*exact, options.exactColour);
       TracePlanOptions planOptions;
       planOptions.exactColour = options.exactColour;
+      planOptions.aim = options.aim;
       const TracePlan plan = buildTracePlan(scene, options.seed, planOptions);
       DeviceRun run(device, vulkan.get(), plan, scene);
       for (uint64_t beams : options.beamCounts) {
@@ -129,6 +130,8 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
         row.deviceName = device.name;
         row.beams = beams;
         row.exactColour = options.exactColour;
+        row.aimed = options.aim;
+        for (const auto& light : plan.lights) row.aimedLights += light.aimed != 0;
         auto [image, histogram] = run.render(scene, beams, row);
         row.hits = histogram.countedBeams;
         row.metrics = computeErrorMetrics(image, reference, estimatedRelativeVariance(histogram, beams));
@@ -229,12 +232,12 @@ std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t 
 
 void writeSweepCsv(const std::filesystem::path& file, const std::vector<SweepRow>& rows) {
   std::ofstream out(file);
-  out << "scene,device,device_name,beams,hits,wall_s,trace_device_s,resolve_device_s,beams_per_s,rel_rmse,rel_mse,"
+  out << "scene,device,device_name,aimed,beams,counted,wall_s,trace_device_s,resolve_device_s,beams_per_s,rel_rmse,rel_mse,"
          "bias,de2000_mean,de2000_p99,chromaticity_error,estimated_rel_rmse,honesty,fom\n";
   for (const auto& r : rows) {
     const auto& m = r.metrics;
-    out << fmt::format("{},{},\"{}\",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
-                       r.scene, r.device, r.deviceName, r.beams, r.hits, r.wallSeconds, r.traceDeviceSeconds,
+    out << fmt::format("{},{},\"{}\",{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                       r.scene, r.device, r.deviceName, int(r.aimed), r.beams, r.hits, r.wallSeconds, r.traceDeviceSeconds,
                        r.resolveDeviceSeconds, double(r.beams) / r.wallSeconds, m.relRmse, m.relMse, m.bias,
                        m.deltaE2000Mean, m.deltaE2000P99, m.meanChromaticityError, m.estimatedRelRmse, m.honesty, r.fom);
   }

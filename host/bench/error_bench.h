@@ -25,11 +25,13 @@ std::vector<BenchDevice> benchDevices(const std::string& filter);
 
 struct SweepRow {
   std::string scene, device, deviceName;
-  uint64_t beams = 0, hits = 0;
+  uint64_t beams = 0, hits = 0;       // beams traced, beams counted
   double wallSeconds = 0.0;           // trace + resolve, host clock (no setup)
   double traceDeviceSeconds = 0.0;    // timestamps (GPU only)
   double resolveDeviceSeconds = 0.0;
   bool exactColour = true;
+  bool aimed = true;                  // aimed sampling asked for
+  int aimedLights = 0;                // lights it applied to (0: none gains from it)
   ErrorMetrics metrics;
   double fom = 0.0;                   // 1 / (relMSE * wallSeconds)
 };
@@ -39,6 +41,7 @@ struct SweepOptions {
   std::vector<uint64_t> beamCounts;   // e.g. 1e3 .. 1e8
   uint64_t seed = 1;
   bool exactColour = true;
+  bool aim = true;                    // aimed sampling (false: analog, --no-aim)
   std::function<void(const SweepRow&)> onRow;
 };
 

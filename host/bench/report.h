@@ -16,12 +16,16 @@ struct ThroughputRow {
   double wallSeconds = 0.0, traceDeviceSeconds = 0.0;
 };
 
-// Beams/s of the general and the scene-specialised trace pipeline.
+// Beams/s of the general and the scene-specialised trace pipeline, and of
+// each specialisation alone.
 struct SpecialisationRow {
   std::string scene, deviceName;
   uint64_t beams = 0;
   double generalSeconds = 0.0, specialisedSeconds = 0.0;  // device time of the trace pass
+  std::vector<double> featureSeconds;  // one per SpecialisedFeature bit, alone
 };
+// The names of the SpecialisedFeature bits, in bit order.
+inline const char* const kSpecialisedFeatureNames[] = {"light types", "light choice", "pinhole", "exact colour", "aim"};
 
 // Storing the full spectrum against only the bins the lights reach.
 struct TrimRow {
@@ -33,6 +37,15 @@ struct TrimRow {
   double fullResolveSeconds = 0.0, trimmedResolveSeconds = 0.0;
 };
 
+// Aimed against analog sampling of one reference scene on one device: each
+// at its own beam count (analog needs many more to count enough), compared
+// by figure of merit, which does not depend on the beam count once the
+// error falls as N^-1/2.
+struct AimRow {
+  SweepRow aimed, analog;
+  double fomGain() const { return aimed.fom / analog.fom; }
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
@@ -40,12 +53,16 @@ struct BenchReport {
   std::vector<ThroughputRow> throughput;
   std::vector<SpecialisationRow> specialisation;
   std::vector<TrimRow> trim;
+  std::vector<AimRow> aim;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };
 
 // Writes DIR/benchmarks.md and DIR/bench/{*.csv,*.png}. Plots need gnuplot;
-// without it the report says so and keeps the tables.
+// without it the report says so and keeps the tables. A section of an
+// existing DIR/benchmarks.md that starts with kNotesHeading, and everything
+// after it, is hand-written and kept.
+inline constexpr const char* kNotesHeading = "## Notes (hand-written";
 void writeBenchReport(const std::filesystem::path& dir, const BenchReport& report);
 
 }  // namespace spectrace

@@ -104,18 +104,24 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
     scenes.emplace_back(name, loadScene(scenesDir / (std::string(name) + ".json")));
   std::vector<SpecialisationRow> rows;
   fmt::print("\nSpecialised pipelines (device time of the trace pass)\n");
-  fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}\n", "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
+  fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}   gain of each alone (light types, choice, pinhole, colour, aim)\n",
+             "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
   for (const auto& device : devices) {
     if (device.kind != "gpu") continue;
     for (const auto& [name, scene] : scenes) {
-      SpecialisationRow row{name, device.name, uint64_t(1) << 24, 0.0, 0.0};
-      for (bool specialise : {false, true}) {
-        const RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
-                                                [&](RenderOptions& o) { o.specialise = specialise; });
-        (specialise ? row.specialisedSeconds : row.generalSeconds) = result.traceDeviceSeconds;
-      }
-      fmt::print("{:<26} {:>10} {:>16.2f} {:>20.2f} {:>8.2f}\n", name, row.beams, double(row.beams) / row.generalSeconds * 1e-6,
-                 double(row.beams) / row.specialisedSeconds * 1e-6, row.generalSeconds / row.specialisedSeconds);
+      SpecialisationRow row{name, device.name, uint64_t(1) << 24, 0.0, 0.0, {}};
+      auto seconds = [&](uint32_t features) {
+        return timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
+                           [&](RenderOptions& o) { o.specialisedFeatures = features; })
+            .traceDeviceSeconds;
+      };
+      row.generalSeconds = seconds(kSpecialiseNone);
+      for (uint32_t feature = 1; feature < kSpecialiseAll; feature <<= 1) row.featureSeconds.push_back(seconds(feature));
+      row.specialisedSeconds = seconds(kSpecialiseAll);
+      std::string alone;
+      for (double s : row.featureSeconds) alone += fmt::format(" {:.2f}", row.generalSeconds / s);
+      fmt::print("{:<26} {:>10} {:>16.2f} {:>20.2f} {:>8.2f}  {}\n", name, row.beams, double(row.beams) / row.generalSeconds * 1e-6,
+                 double(row.beams) / row.specialisedSeconds * 1e-6, row.generalSeconds / row.specialisedSeconds, alone);
       rows.push_back(row);
     }
   }
@@ -154,6 +160,41 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
   return rows;
 }
 
+// Aimed against analog sampling on reference scenes (exact answers), each
+// at a beam count where its error is well inside the N^-1/2 regime.
+std::vector<AimRow> runAimStudy(const std::vector<BenchDevice>& devices, const std::filesystem::path& dir) {
+  struct Case {
+    const char* scene;
+    uint64_t aimedBeams, analogBeams;
+  };
+  const Case cases[] = {{"pinhole_small", 2'000'000, 100'000'000}, {"pinhole_rect", 2'000'000, 20'000'000},
+                        {"point_off_axis", 4'000'000, 4'000'000},    {"disk_off_axis", 4'000'000, 4'000'000},
+                        {"laser_532", 4'000'000, 4'000'000}};
+  std::vector<AimRow> rows;
+  fmt::print("\nAimed against analog sampling (error against the exact answer)\n");
+  fmt::print("{:<15} {:<6} {:<7} {:>11} {:>9} {:>12} {:>16} {:>10} {:>10} {:>8}\n", "scene", "device", "sampling",
+             "beams", "counted", "Mbeam/s all", "Mbeam/s counted", "relRMSE", "FOM", "gain");
+  for (const auto& device : devices) {
+    for (const Case& c : cases) {
+      AimRow row;
+      for (bool aim : {true, false}) {
+        SweepOptions options;
+        options.scenes = {(dir / (std::string(c.scene) + ".json")).string()};
+        options.beamCounts = {aim ? c.aimedBeams : c.analogBeams};
+        options.aim = aim;
+        (aim ? row.aimed : row.analog) = runErrorSweep({device}, options).front();
+      }
+      for (const SweepRow* r : {&row.aimed, &row.analog})
+        fmt::print("{:<15} {:<6} {:<7} {:>11} {:>8.3g}% {:>12.2f} {:>16.3g} {:>10.3g} {:>10.4g} {:>8}\n", r->scene,
+                   r->device, r->aimed ? "aimed" : "analog", r->beams, 100.0 * double(r->hits) / double(r->beams),
+                   double(r->beams) / r->wallSeconds * 1e-6, double(r->hits) / r->wallSeconds * 1e-6,
+                   r->metrics.relRmse, r->fom, r->aimed ? fmt::format("{:.3g}", row.fomGain()) : "");
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
   // A fixed list, so the benchmark's rows are comparable between runs.
   std::vector<std::string> scenes;
@@ -183,6 +224,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.specialisation = runSpecialisation(report.devices, dir.parent_path(), cancel);
     report.trim = runTrim(report.devices, dir.parent_path(), cancel);
   }
+  if (command.aim) report.aim = runAimStudy(report.devices, dir);
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);

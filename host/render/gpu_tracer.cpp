@@ -37,17 +37,20 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
   return {groupsX, uint32_t((groups + groupsX - 1) / groupsX), groupsX * workgroupSize};
 }
 
-// Specialisation constants 2..6 of trace_beams.comp (device_shared.h, kSpec*).
-std::vector<uint32_t> traceSpecialisation(const TracePlan& plan, bool specialise) {
-  if (!specialise) return {31u, 1u, 2u, 2u, 2u};
+// Specialisation constants 2..6 of trace_beams.comp (device_shared.h,
+// kSpec*): the scene's value for each feature in `features`, else the
+// general pipeline's (decide at run time).
+std::vector<uint32_t> traceSpecialisation(const TracePlan& plan, uint32_t features) {
   uint32_t types = 0;
   bool aimed = false;
   for (const auto& light : plan.lights) {
     types |= 1u << light.type;
     aimed = aimed || light.aimed != 0;
   }
-  return {types, plan.lights.size() > 1 ? 1u : 0u, plan.constants.apertureDistance > 0.0f ? 1u : 0u,
-          plan.exactColour() ? 1u : 0u, aimed ? 1u : 0u};
+  auto pick = [&](SpecialisedFeature f, uint32_t scene, uint32_t general) { return (features & f) ? scene : general; };
+  return {pick(kSpecialiseLightTypes, types, 31u), pick(kSpecialiseLightChoice, plan.lights.size() > 1 ? 1u : 0u, 1u),
+          pick(kSpecialisePinhole, plan.constants.apertureDistance > 0.0f ? 1u : 0u, 2u),
+          pick(kSpecialiseExactColour, plan.exactColour() ? 1u : 0u, 2u), pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)};
 }
 
 // Specialisation constants in constant_id order.
@@ -79,11 +82,12 @@ HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPi
   return split;
 }
 
-GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize, bool specialise)
+GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize,
+                     uint32_t specialisedFeatures)
     : context_(context),
       plan_(plan),
       workgroupSize_(workgroupSize),
-      traceSpecialisation_(traceSpecialisation(plan, specialise)),
+      traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures)),
       split_(HistogramSplit::forDevice(plan.pixelCount(), plan.countersPerPixel(), context.info().maxStorageBufferRange,
                                        context.info().maxMemoryAllocationSize)),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),

@@ -8,6 +8,7 @@
 #include "cpu/resolve_cpu.h"
 #include "cpu/spectral_histogram.h"
 #include "lights/trace_plan.h"
+#include "render/specialisation.h"
 #include "vulkan/buffer.h"
 #include "vulkan/compute_pipeline.h"
 #include "vulkan/context.h"
@@ -43,10 +44,12 @@ std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolvePara
 
 class GpuTracer {
  public:
-  // `specialise`: compile the trace pipeline for this plan (absent light
-  // types, light choice, pinhole and exact colour fixed by specialisation
-  // constants); otherwise use the general pipeline, which decides at run time.
-  GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64, bool specialise = true);
+  // `specialisedFeatures` (SpecialisedFeature bits): the scene features the
+  // trace pipeline is compiled for (absent light types, light choice,
+  // pinhole, exact colour, aiming, fixed by specialisation constants); the
+  // others are decided at run time. kSpecialiseNone is the general pipeline.
+  GpuTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64,
+            uint32_t specialisedFeatures = kSpecialiseAll);
 
   // Adds beams [firstBeam, firstBeam + beamCount) to the device histogram.
   // Returns the device time of the trace pass in seconds (timestamps).

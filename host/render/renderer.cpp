@@ -80,7 +80,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   std::unique_ptr<GpuTracer> gpu;
   if (options.device != DeviceChoice::Cpu) vulkan = openVulkan(options.device, options);
   if (vulkan) {
-    gpu = std::make_unique<GpuTracer>(*vulkan, plan, options.workgroupSize, options.specialise);
+    gpu = std::make_unique<GpuTracer>(*vulkan, plan, options.workgroupSize, options.specialisedFeatures);
     result.deviceKind = "gpu";
     result.deviceName = vulkan->info().name;
   } else {

@@ -10,6 +10,7 @@
 #include "cpu/spectral_histogram.h"
 #include "io/image.h"
 #include "lights/trace_plan.h"
+#include "render/specialisation.h"
 #include "scene/scene.h"
 
 namespace spectrace {
@@ -25,7 +26,9 @@ struct RenderOptions {
   unsigned cpuThreads = 0;           // 0: all hardware threads
   uint32_t workgroupSize = 64;
   bool exactColour = true;           // per-beam CMF sums (see TracePlanOptions)
-  bool specialise = true;            // GPU: a trace pipeline compiled for the scene
+  // GPU: the scene features the trace pipeline is compiled for
+  // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
+  uint32_t specialisedFeatures = kSpecialiseAll;
   bool trimSpectrum = true;          // store only the bins the lights can reach
   bool aim = true;                   // beams only towards the camera, weighted (see TracePlanOptions)
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch

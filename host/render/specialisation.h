@@ -1,0 +1,19 @@
+#pragma once
+// Which scene features the trace pipeline is specialised to (compiled for
+// the scene's value through a specialisation constant, device_shared.h
+// kSpec*); the others are decided at run time, as in the general pipeline.
+#include <cstdint>
+
+namespace spectrace {
+
+enum SpecialisedFeature : uint32_t {
+  kSpecialiseNone = 0,
+  kSpecialiseLightTypes = 1u << 0,   // code for absent light types compiled out
+  kSpecialiseLightChoice = 1u << 1,  // no light choice with one light
+  kSpecialisePinhole = 1u << 2,      // bare or pinhole branch fixed
+  kSpecialiseExactColour = 1u << 3,  // per-beam colour path fixed on or off
+  kSpecialiseAim = 1u << 4,          // aiming code compiled out when no light is aimed
+  kSpecialiseAll = (1u << 5) - 1,
+};
+
+}  // namespace spectrace
