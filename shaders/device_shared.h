@@ -123,7 +123,7 @@ struct SpectralInterval {
 // of a CMF unit, adds rounding noise far below the Monte Carlo noise.
 SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
 
-// Scene-wide constants of the trace pass. Each pixel owns countersPerPixel
+// Scene-wide constants of the trace pass. Each stored pixel owns countersPerPixel
 // 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour,
 // then the sum of squared weights when weightUnits > 1.
 // The stored bins are bins [binOffset, binOffset + bins) of the spectrum's
@@ -150,6 +150,14 @@ struct TraceConstants {
   vec3 aimCentre;           // sphere holding every point a counted beam passes: the
   float aimRadius;          // pinhole's disk, or the bare sensor (metres)
   uint weightUnits;         // 1 or kWeightUnitsFractional (see there)
+  // The stored pixels: the rectangle of columns [windowX0, windowX0 +
+  // windowWidth) and rows [windowY0, windowY0 + windowHeight) that beams can
+  // reach (the whole sensor unless the host proves less); the histogram
+  // holds these pixels only, row-major.
+  uint windowX0;
+  uint windowY0;
+  uint windowWidth;
+  uint windowHeight;
   uint padding0;
   uint64_t seed;
 };
@@ -212,7 +220,7 @@ struct RngCheckPush {
 #ifdef __cplusplus
 static_assert(sizeof(LightRecord) == 136);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 112);
+static_assert(sizeof(TraceConstants) == 128);
 static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);
 static_assert(sizeof(TracePush) == 16);

@@ -89,19 +89,30 @@ void main() {
     if (recordBeams != 0u) {
       beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(units), 0u) : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
     } else if (hit) {
-      atomicAdd(groupCounted, 1u);
-      uint chunk = pixel / constants.pixelsPerChunk;
-      uint base = (pixel - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
-      addCount(chunk, base + bin, units);
-      uint next = base + constants.bins;
-      if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
-        PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
-        addCount(chunk, next, colourFixedPoint(cmf.x, spareUniform));
-        addCount(chunk, next + 1u, colourFixedPoint(cmf.y, spareUniform));
-        addCount(chunk, next + 2u, colourFixedPoint(cmf.z, spareUniform));
-        next += 3u;
+      // The pixel's place in the stored window. The host proves every
+      // reachable pixel lies inside it; the guard keeps a disproof (which the
+      // tests comparing against the whole sensor would show) in bounds.
+      uint row = pixel / constants.pixelsX;
+      uint column = pixel - row * constants.pixelsX;
+      uint windowRow = row - constants.windowY0;  // wraps to large when row < windowY0
+      uint windowColumn = column - constants.windowX0;
+      if (windowRow < constants.windowHeight && windowColumn < constants.windowWidth) {
+        atomicAdd(groupCounted, 1u);
+        uint stored = windowRow * constants.windowWidth + windowColumn;
+        uint chunk = stored / constants.pixelsPerChunk;
+        uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
+        addCount(chunk, base + bin, units);
+        uint next = base + constants.bins;
+        if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
+          PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
+          addCount(chunk, next, colourFixedPoint(cmf.x, spareUniform));
+          addCount(chunk, next + 1u, colourFixedPoint(cmf.y, spareUniform));
+          addCount(chunk, next + 2u, colourFixedPoint(cmf.z, spareUniform));
+          next += 3u;
+        }
+        if (aimMode != 0u && constants.weightUnits != 1u)
+          addCount(chunk, next, squaredWeightUnitsOf(ratio, spareUniform));
       }
-      if (aimMode != 0u && constants.weightUnits != 1u) addCount(chunk, next, squaredWeightUnitsOf(ratio, spareUniform));
     }
   }
   barrier();

@@ -207,5 +207,60 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
   }
 }
 
+// Storing only the pixels beams can reach (the image of the lights through
+// a pinhole, a laser's footprint) changes nothing but memory and time:
+// histograms and images are bit-identical to storing the whole sensor.
+TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
+  struct Case {
+    const char* name;
+    Scene scene;
+    bool smaller;  // the window should be smaller than the sensor
+  };
+  std::vector<Case> cases;
+  {
+    Scene s = bareSensorScene(0.036, 0.024, 36, 24, 16);
+    s.camera.pinhole = Pinhole{0.05, 0.0005};
+    Light panel = surfaceLight(LightType::Rect, {0.05, 0.03, 0.5}, glm::normalize(glm::dvec3(0.1, 0.0, -1.0)), 1.0,
+                               *cieIlluminant("D65"));
+    panel.sizeM = {0.06, 0.04};
+    panel.uAxis = {1, 0, 0};
+    s.lights = {panel, pointLight({-0.04, 0.01, 0.3}, 0.2, *cieIlluminant("A"))};
+    cases.push_back({"pinhole: tilted panel and point light off axis", s, true});
+  }
+  {
+    Scene s = bareSensorScene(0.02, 0.02, 20, 20, 16);
+    Light beam = surfaceLight(LightType::Laser, {0.003, -0.002, 0.05}, glm::normalize(glm::dvec3(0.02, 0.01, -1.0)),
+                              1.0, makeLineSpd(532.0));
+    beam.radiusM = 0.001;
+    s.lights = {beam};
+    cases.push_back({"bare: slanted laser", s, true});
+  }
+  {
+    Scene s = bareSensorScene(0.02, 0.02, 16, 16, 16);
+    s.camera.pinhole = Pinhole{0.01, 0.002};
+    Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.0105}, glm::normalize(glm::dvec3(0.0, 1.0, -0.2)), 1.0,
+                              *cieIlluminant("D65"));
+    disk.radiusM = 0.003;  // reaches below the aperture plane: no bound, the whole sensor
+    s.lights = {disk};
+    cases.push_back({"pinhole: disk straddling the aperture plane", s, false});
+  }
+  for (const auto& c : cases) {
+    const TracePlan plan = buildTracePlan(c.scene, 1);
+    std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.storedPixelCount(),
+                (unsigned long long)plan.pixelCount());
+    EXPECT_EQ(plan.storedPixelCount() < plan.pixelCount(), c.smaller) << c.name;
+    RenderOptions options;
+    options.beams = 1'000'000;
+    options.device = DeviceChoice::Gpu;
+    const RenderResult a = render(c.scene, options);
+    options.trimPixels = false;
+    const RenderResult b = render(c.scene, options);
+    EXPECT_EQ(b.plan.storedPixelCount(), b.plan.pixelCount());
+    EXPECT_GT(a.histogram.countedBeams, 10'000u) << c.name;
+    expectSameHistogram(a.histogram, b.histogram, c.name);
+    expectSameImage(a.image, b.image, c.name);
+  }
+}
+
 }  // namespace
 }  // namespace spectrace

@@ -204,14 +204,17 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
   }
 
   if (!report.trim.empty()) {
-    md << "## Trimmed spectra\n\n";
-    md << "The device stores only the wavelength bins the scene's lights can reach (histograms and images are "
-          "bit-identical, `Render.TrimmedSpectrumMatchesFullSpectrumBitForBit`). Device memory of the histogram and "
-          "device time of the trace and resolve passes, full spectrum against trimmed, in this run.\n\n";
-    md << "| scene | device | bins stored | histogram MiB | trace s | resolve ms |\n| --- | --- | ---: | ---: | ---: | ---: |\n";
+    md << "## Trimmed spectra and sensor\n\n";
+    md << "The device stores only the wavelength bins the scene's lights can reach and the rectangle of pixels "
+          "beams can reach (histograms and images are bit-identical, "
+          "`Render.TrimmedSpectrumMatchesFullSpectrumBitForBit`, `Render.TrimmedSensorMatchesFullSensorBitForBit`), and resolves only those pixels. Device memory of "
+          "the histogram and device time of the trace and resolve passes, untrimmed against trimmed, in this "
+          "run.\n\n";
+    md << "| scene | device | bins stored | pixels stored | histogram MiB | trace s | resolve ms |\n"
+          "| --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& r : report.trim)
-      md << fmt::format("| {} | {} | {} → {} | {:.2f} → {:.2f} | {:.3f} → {:.3f} | {:.2f} → {:.2f} |\n", r.scene,
-                        r.deviceName, r.fullBins, r.storedBins, r.fullMiB, r.trimmedMiB, r.fullTraceSeconds,
+      md << fmt::format("| {} | {} | {} → {} | {} → {} | {:.2f} → {:.2f} | {:.3f} → {:.3f} | {:.2f} → {:.2f} |\n", r.scene,
+                        r.deviceName, r.fullBins, r.storedBins, r.fullPixels, r.storedPixels, r.fullMiB, r.trimmedMiB, r.fullTraceSeconds,
                         r.trimmedTraceSeconds, r.fullResolveSeconds * 1e3, r.trimmedResolveSeconds * 1e3);
     md << "\n";
   }

@@ -32,6 +32,7 @@ struct TrimRow {
   std::string scene, deviceName;
   uint64_t beams = 0;
   uint32_t fullBins = 0, storedBins = 0;
+  uint64_t fullPixels = 0, storedPixels = 0;
   double fullMiB = 0.0, trimmedMiB = 0.0;                  // device histogram
   double fullTraceSeconds = 0.0, trimmedTraceSeconds = 0.0;  // device time
   double fullResolveSeconds = 0.0, trimmedResolveSeconds = 0.0;

@@ -132,11 +132,13 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
 std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std::filesystem::path& scenesDir,
                              const std::atomic<bool>& cancel) {
   std::vector<TrimRow> rows;
-  fmt::print("\nTrimmed spectra (device histogram, device times)\n");
-  fmt::print("{:<28} {:>10} {:>16} {:>18} {:>18}\n", "scene", "bins", "histogram MiB", "trace s", "resolve ms");
+  fmt::print("\nTrimmed spectra and sensor (device histogram, device times)\n");
+  fmt::print("{:<28} {:>10} {:>16} {:>16} {:>18} {:>18}\n", "scene", "bins", "pixels", "histogram MiB", "trace s",
+             "resolve ms");
   for (const auto& device : devices) {
     if (device.kind != "gpu") continue;
-    for (const char* name : {"reference/laser_532", "reference/uniform_f11", "reference/uniform_led_b3", "default"}) {
+    for (const char* name : {"reference/laser_532", "reference/uniform_f11", "reference/uniform_led_b3",
+                             "reference/pinhole_rect", "stress/laser_one_pixel", "default"}) {
       const Scene scene = loadScene(scenesDir / (std::string(name) + ".json"));
       TrimRow row;
       row.scene = name;
@@ -144,15 +146,19 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
       row.beams = uint64_t(1) << 24;
       for (bool trim : {false, true}) {
         const RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
-                                                [&](RenderOptions& o) { o.trimSpectrum = trim; });
-        const double mib = double(result.plan.pixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
+                                                [&](RenderOptions& o) {
+                                                  o.trimSpectrum = trim;
+                                                  o.trimPixels = trim;
+                                                });
+        const double mib = double(result.plan.storedPixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
         (trim ? row.storedBins : row.fullBins) = result.plan.storedBins();
+        (trim ? row.storedPixels : row.fullPixels) = result.plan.storedPixelCount();
         (trim ? row.trimmedMiB : row.fullMiB) = mib;
         (trim ? row.trimmedTraceSeconds : row.fullTraceSeconds) = result.traceDeviceSeconds;
         (trim ? row.trimmedResolveSeconds : row.fullResolveSeconds) = result.resolveDeviceSeconds;
       }
-      fmt::print("{:<28} {:>4} -> {:<4} {:>7.2f} -> {:<6.2f} {:>8.3f} -> {:<6.3f} {:>8.2f} -> {:<6.2f}\n", name, row.fullBins,
-                 row.storedBins, row.fullMiB, row.trimmedMiB, row.fullTraceSeconds, row.trimmedTraceSeconds,
+      fmt::print("{:<28} {:>4} -> {:<4} {:>7} -> {:<7} {:>7.2f} -> {:<6.2f} {:>8.3f} -> {:<6.3f} {:>8.2f} -> {:<6.2f}\n",
+                 name, row.fullBins, row.storedBins, row.fullPixels, row.storedPixels, row.fullMiB, row.trimmedMiB, row.fullTraceSeconds, row.trimmedTraceSeconds,
                  row.fullResolveSeconds * 1e3, row.trimmedResolveSeconds * 1e3);
       rows.push_back(row);
     }

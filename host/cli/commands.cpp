@@ -55,6 +55,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   options.cancel = &cancel;
   options.checkpointSeconds = command.checkpointSeconds;
   options.trimSpectrum = !command.fullSpectrum;
+  options.trimPixels = !command.fullSensor;
   options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
   options.aim = !command.noAim;
   if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };

@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
   renderCmd->add_flag("--full-spectrum", render.fullSpectrum,
                       "Store every wavelength bin on the device, not only those the lights can reach");
+  renderCmd->add_flag("--full-sensor", render.fullSensor,
+                      "Store every pixel on the device, not only those the beams can reach");
   renderCmd->add_flag("--general-pipeline", render.general,
                       "Use the general trace pipeline instead of one specialised to the scene");
   renderCmd->add_flag("--no-aim", render.noAim,

@@ -184,6 +184,100 @@ double aimLight(const Light& light, const glm::dvec3& position, const glm::dvec3
   return 1.0;
 }
 
+// Where a traced light can put beams on the sensor, conservatively: its
+// emission points (corners of a convex region holding them, in the camera
+// frame), and for a laser its beam.
+struct LightReach {
+  std::vector<glm::dvec3> corners;
+  bool laser = false;
+  glm::dvec3 axis{0.0};
+  double radius = 0.0;
+};
+
+LightReach lightReach(const Light& light, const glm::dvec3& position, const glm::dvec3& axis, const glm::dvec3& tangent,
+                      const glm::dvec3& bitangent) {
+  LightReach reach;
+  reach.laser = light.type == LightType::Laser;
+  reach.axis = axis;
+  reach.radius = light.radiusM;
+  double u = 0.0, v = 0.0;  // half extents along tangent, bitangent
+  if (light.type == LightType::Disk || light.type == LightType::Laser) u = v = light.radiusM;  // the disk's square
+  if (light.type == LightType::Rect) {
+    u = 0.5 * light.sizeM.x;
+    v = 0.5 * light.sizeM.y;
+  }
+  for (double su : {-1.0, 1.0})
+    for (double sv : {-1.0, 1.0}) reach.corners.push_back(position + tangent * (su * u) + bitangent * (sv * v));
+  return reach;
+}
+
+// The pixels any counted beam can land on (plus a pixel of margin for float
+// rounding), or the whole sensor when that cannot be bounded.
+// - Pinhole at distance D, radius r: a beam from P (height h = P.z - D > 0)
+//   through the aperture point A hits H = A (1 + D/h) - P_xy D/h, inside the
+//   disk about -P_xy D/h of radius r (1 + D/h). Over a convex emitter with
+//   h > 0 throughout, -P_xy D/h stays in the hull of its corners' images
+//   (a perspective map keeps segments straight), and 1 + D/h <= 1 + D/h_min.
+// - Bare sensor: only lasers are bounded: the beam's footprint lies within
+//   R / |a.z| of where its axis meets the sensor.
+device::TraceConstants pixelWindow(const Camera& camera, const std::vector<LightReach>& lights,
+                                   device::TraceConstants c) {
+  c.windowX0 = c.windowY0 = 0;
+  c.windowWidth = uint32_t(camera.pixelsX);
+  c.windowHeight = uint32_t(camera.pixelsY);
+  const double halfW = 0.5 * camera.sensorWidthM, halfH = 0.5 * camera.sensorHeightM;
+  glm::dvec2 lo(INFINITY), hi(-INFINITY);  // sensor-plane bounds of every hit
+  for (const LightReach& light : lights) {
+    if (camera.pinhole) {
+      const double d = camera.pinhole->distanceM, r = camera.pinhole->radiusM;
+      double hMin = INFINITY;
+      for (const glm::dvec3& p : light.corners) {
+        const double h = p.z - d;
+        if (!(h > 0.0)) return c;  // part of the emitter at or behind the aperture plane
+        hMin = std::min(hMin, h);
+        const glm::dvec2 centre = -glm::dvec2(p.x, p.y) * (d / h);
+        lo = glm::min(lo, centre);
+        hi = glm::max(hi, centre);
+      }
+      const double blur = r * (1.0 + d / hMin);
+      lo -= blur;
+      hi += blur;
+    } else {
+      if (!light.laser || !(light.axis.z < 0.0)) return c;
+      const glm::dvec3 centre3 = 0.25 * (light.corners[0] + light.corners[1] + light.corners[2] + light.corners[3]);
+      const double t = centre3.z / -light.axis.z;
+      const glm::dvec2 centre(centre3.x + t * light.axis.x, centre3.y + t * light.axis.y);
+      const double extent = light.radius / -light.axis.z;
+      lo = glm::min(lo, centre - extent);
+      hi = glm::max(hi, centre + extent);
+    }
+  }
+  if (!(std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y))) return c;
+  // Sensor coordinates to pixel columns and rows (hitSensor: a pinhole image
+  // is flipped upright), widened by a pixel for rounding.
+  const double ppmX = camera.pixelsX / camera.sensorWidthM, ppmY = camera.pixelsY / camera.sensorHeightM;
+  double colLo, colHi, rowLo, rowHi;
+  if (camera.pinhole) {
+    colLo = (halfW - hi.x) * ppmX;
+    colHi = (halfW - lo.x) * ppmX;
+    rowLo = (lo.y + halfH) * ppmY;
+    rowHi = (hi.y + halfH) * ppmY;
+  } else {
+    colLo = (lo.x + halfW) * ppmX;
+    colHi = (hi.x + halfW) * ppmX;
+    rowLo = (halfH - hi.y) * ppmY;
+    rowHi = (halfH - lo.y) * ppmY;
+  }
+  const double maxCol = camera.pixelsX - 1, maxRow = camera.pixelsY - 1;
+  const double c0 = std::clamp(std::floor(colLo) - 1.0, 0.0, maxCol), c1 = std::clamp(std::floor(colHi) + 1.0, 0.0, maxCol);
+  const double r0 = std::clamp(std::floor(rowLo) - 1.0, 0.0, maxRow), r1 = std::clamp(std::floor(rowHi) + 1.0, 0.0, maxRow);
+  c.windowX0 = uint32_t(c0);
+  c.windowY0 = uint32_t(r0);
+  c.windowWidth = uint32_t(c1 - c0) + 1;
+  c.windowHeight = uint32_t(r1 - r0) + 1;
+  return c;
+}
+
 std::string sceneName(const Scene& scene) {
   return scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
 }
@@ -207,6 +301,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   plan.pixelAreaM2 = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
 
   std::vector<double> selectWeights;
+  std::vector<LightReach> reaches;
   for (const Light& light : scene.lights) {
     LightSummary summary;
     summary.label = fmt::format("{} ({}, {})", light.label, lightTypeName(light.type), light.spdLabel);
@@ -257,6 +352,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
       if (options.aim) summary.largestWeight = aimLight(light, position, axis, tangent, bitangent, target, record);
       summary.aimed = record.aimed != 0;
       plan.lights.push_back(record);
+      reaches.push_back(lightReach(light, position, axis, tangent, bitangent));
       // Selection in proportion to power x largest weight: each light's
       // weight ratios are then <= 1 and its beams share one scale.
       selectWeights.push_back(summary.tracedPowerW * summary.largestWeight);
@@ -318,6 +414,10 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
     c.bins = last - first + 1;
   }
   c.countersPerPixel = c.bins + (options.exactColour ? 3u : 0u) + (plan.weighted() ? 1u : 0u);
+  c.windowX0 = c.windowY0 = 0;
+  c.windowWidth = plan.pixelsX;
+  c.windowHeight = plan.pixelsY;
+  if (options.trimPixels) c = pixelWindow(camera, reaches, c);
   return plan;
 }
 

@@ -44,6 +44,12 @@ struct TracePlan {
   uint32_t storedBins() const { return constants.bins; }
 
   uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
+  // The pixels the device stores: a window of the sensor (TraceConstants).
+  uint64_t storedPixelCount() const { return uint64_t(constants.windowWidth) * constants.windowHeight; }
+  uint64_t fullPixelOfStored(uint64_t stored) const {
+    const uint64_t row = stored / constants.windowWidth, column = stored % constants.windowWidth;
+    return (row + constants.windowY0) * pixelsX + column + constants.windowX0;
+  }
   bool weighted() const { return constants.weightUnits != 1; }
   // An all-zero histogram of this plan's shape (all bins of the spectrum).
   SpectralHistogram emptyHistogram() const {
@@ -75,6 +81,9 @@ struct TracePlanOptions {
   // Store only the wavelength bins the traced lights can reach (a 532 nm
   // laser needs one); off: store the whole spectrum range.
   bool trimSpectrum = true;
+  // Store only the pixels beams can reach (a rectangle: the image of the
+  // lights through a pinhole, a laser's footprint); off: the whole sensor.
+  bool trimPixels = true;
   // Draw beams only towards the camera (the pinhole, or the bare sensor),
   // weighted so the estimate is unbiased; off: analog emission (the
   // reference path).

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+
+#include "cpu/beam_kernel.h"
 
 #include "scene/scene_builders.h"
 
@@ -105,6 +108,56 @@ TEST(AimedPlan, NoAimIsTheAnalogPlan) {
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
   EXPECT_FALSE(plan.weighted());
   EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u);
+}
+
+TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
+  // Random lights of every type in front of random pinhole and bare
+  // cameras: every beam the shared beam code counts (the CPU kernel runs the
+  // shader's text) must land inside the stored window, or the device would
+  // drop it. std::mt19937_64 with a fixed seed: the scenes are the same on
+  // every run.
+  std::mt19937_64 random(20261122);
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(random); };
+  int windowed = 0, beamsChecked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Scene scene = bareSensorScene(0.036, 0.024, 48, 32, 8);
+    const bool pinhole = trial % 2 == 0;
+    if (pinhole) scene.camera.pinhole = Pinhole{uniform(0.005, 0.05), uniform(1e-4, 3e-3)};
+    const double base = pinhole ? scene.camera.pinhole->distanceM : 0.0;
+    const LightType type = LightType(trial / 2 % 5);
+    const glm::dvec3 centre(uniform(-0.05, 0.05), uniform(-0.05, 0.05), base + uniform(0.002, 0.3));
+    const glm::dvec3 direction = glm::normalize(glm::dvec3(uniform(-0.5, 0.5), uniform(-0.5, 0.5), -1.0));
+    Light light = surfaceLight(type, centre, direction, 1.0, makeLineSpd(550.0));
+    light.radiusM = uniform(1e-4, 0.02);
+    light.sizeM = {uniform(1e-3, 0.05), uniform(1e-3, 0.05)};
+    light.uAxis = glm::normalize(glm::cross(direction, glm::dvec3(0.3, 1.0, 0.1)));
+    light.coneHalfAngleDeg = uniform(1.0, 60.0);
+    scene.lights = {light};
+    TracePlan plan;
+    try {
+      plan = buildTracePlan(scene, uint64_t(trial));
+    } catch (const SceneError&) {
+      continue;  // the light cannot reach the sensor
+    }
+    windowed += plan.storedPixelCount() < plan.pixelCount();
+    device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals);
+    const auto& c = plan.constants;
+    int outside = 0;
+    for (uint64_t i = 0; i < 20'000; ++i) {
+      uint32_t pixel, bin;
+      if (!kernel.trace(i, pixel, bin)) continue;
+      ++beamsChecked;
+      const uint32_t row = pixel / plan.pixelsX, column = pixel % plan.pixelsX;
+      outside += row < c.windowY0 || row >= c.windowY0 + c.windowHeight || column < c.windowX0 ||
+                 column >= c.windowX0 + c.windowWidth;
+    }
+    EXPECT_EQ(outside, 0) << "trial " << trial << " (" << lightTypeName(type) << (pinhole ? ", pinhole" : ", bare")
+                          << "): window " << c.windowX0 << "+" << c.windowWidth << ", " << c.windowY0 << "+"
+                          << c.windowHeight;
+  }
+  std::printf("%d scenes with a window smaller than the sensor; %d counted beams checked\n", windowed, beamsChecked);
+  EXPECT_GT(windowed, 50);
+  EXPECT_GT(beamsChecked, 100'000);
 }
 
 }  // namespace

@@ -88,7 +88,7 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
       plan_(plan),
       workgroupSize_(workgroupSize),
       traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures)),
-      split_(HistogramSplit::forDevice(plan.pixelCount(), plan.countersPerPixel(), context.info().maxStorageBufferRange,
+      split_(HistogramSplit::forDevice(plan.storedPixelCount(), plan.countersPerPixel(), context.info().maxStorageBufferRange,
                                        context.info().maxMemoryAllocationSize)),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
       lights_(uploadedBuffer(context, plan.lights)),
@@ -107,7 +107,8 @@ GpuTracer::GpuTracer(const vk_util::Context& context, const TracePlan& plan, uin
   traceConstants_.upload(&plan_.constants, sizeof(plan_.constants));
   const uint64_t pixelBytes = uint64_t(plan.countersPerPixel()) * sizeof(uint64_t);
   for (uint32_t c = 0; c < split_.chunkCount; ++c) {
-    const uint64_t pixels = std::min<uint64_t>(split_.pixelsPerChunk, plan.pixelCount() - uint64_t(c) * split_.pixelsPerChunk);
+    const uint64_t pixels =
+        std::min<uint64_t>(split_.pixelsPerChunk, plan.storedPixelCount() - uint64_t(c) * split_.pixelsPerChunk);
     histogramChunks_.emplace_back(context, pixels * pixelBytes, vk::BufferUsageFlags{}, MemoryPlacement::DeviceLocal);
   }
   tracePipeline_.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
@@ -228,8 +229,17 @@ void GpuTracer::uploadHistogram(const SpectralHistogram& histogram) {
 void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& plan, size_t firstPixel,
                         std::span<uint64_t> out) {
   const uint32_t stride = plan.countersPerPixel(), stored = plan.storedBins(), first = plan.firstStoredBin();
+  // Pixels outside the stored window must be empty.
+  std::vector<bool> inWindow(plan.pixelCount(), false);
+  for (uint64_t s = 0; s < plan.storedPixelCount(); ++s) inWindow[plan.fullPixelOfStored(s)] = true;
+  for (uint64_t p = 0; p < plan.pixelCount(); ++p) {
+    if (inWindow[p]) continue;
+    for (uint32_t b = 0; b < plan.bins; ++b)
+      if (histogram.counts[p * plan.bins + b] != 0)
+        throw std::invalid_argument("counts in pixels outside the stored window");
+  }
   for (size_t local = 0; local < out.size() / stride; ++local) {
-    const size_t pixel = firstPixel + local;
+    const size_t pixel = plan.fullPixelOfStored(firstPixel + local);
     uint64_t* dst = out.data() + local * stride;
     const auto bins = histogram.counts.begin() + pixel * plan.bins;
     for (uint32_t b = 0; b < plan.bins; ++b) {
@@ -247,7 +257,7 @@ void unpackDeviceCounters(std::span<const uint64_t> counters, const TracePlan& p
                           SpectralHistogram& histogram) {
   const uint32_t stride = plan.countersPerPixel(), stored = plan.storedBins();
   for (size_t local = 0; local < counters.size() / stride; ++local) {
-    const size_t pixel = firstPixel + local;
+    const size_t pixel = plan.fullPixelOfStored(firstPixel + local);
     const uint64_t* src = counters.data() + local * stride;
     std::copy(src, src + stored, histogram.counts.begin() + pixel * plan.bins + plan.firstStoredBin());
     const uint64_t* next = src + stored;
@@ -262,7 +272,7 @@ void unpackDeviceCounters(std::span<const uint64_t> counters, const TracePlan& p
 device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolveParameters& parameters,
                                           uint32_t pixelsPerChunk) {
   device::ResolveConstants constants{};
-  constants.pixelCount = uint32_t(plan.pixelCount());
+  constants.pixelCount = uint32_t(plan.storedPixelCount());
   constants.bins = plan.storedBins();
   constants.pixelsPerChunk = pixelsPerChunk;
   constants.countersPerPixel = plan.countersPerPixel();
@@ -288,7 +298,7 @@ std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolvePara
 
 RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seconds) {
   const device::ResolveConstants constants = resolveConstants(plan_, parameters, split_.pixelsPerChunk);
-  const uint64_t pixelCount = plan_.pixelCount();
+  const uint64_t pixelCount = plan_.storedPixelCount();  // only stored pixels are resolved; the others are 0
   const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
 
   Buffer constantsBuffer(context_, sizeof(constants), {}, MemoryPlacement::DeviceLocal);
@@ -307,9 +317,9 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
   RenderImage image;
   image.width = int(plan_.pixelsX);
   image.height = int(plan_.pixelsY);
-  image.rgb.resize(pixelCount * 3);
-  image.xyz.resize(pixelCount * 3);
-  image.irradiance.resize(pixelCount);
+  image.rgb.assign(plan_.pixelCount() * 3, 0.0f);
+  image.xyz.assign(plan_.pixelCount() * 3, 0.0f);
+  image.irradiance.assign(plan_.pixelCount(), 0.0f);
   std::vector<device::ResolvedPixel> slice(maxSlice);
   double deviceSeconds = 0.0;
   for (uint64_t first = 0; first < pixelCount; first += maxSlice) {
@@ -325,7 +335,7 @@ RenderImage GpuTracer::resolve(const ResolveParameters& parameters, double* seco
     if (ns.size() == 2) deviceSeconds += (ns[1] - ns[0]) * 1e-9;
     output.download(slice.data(), count * sizeof(device::ResolvedPixel));
     for (uint32_t i = 0; i < count; ++i) {
-      const size_t p = first + i;
+      const size_t p = plan_.fullPixelOfStored(first + i);
       for (int k = 0; k < 3; ++k) {
         image.rgb[p * 3 + k] = slice[i].rgb[k];
         image.xyz[p * 3 + k] = slice[i].xyz[k];

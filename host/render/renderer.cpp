@@ -73,6 +73,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   planOptions.exactColour = options.exactColour;
   planOptions.trimSpectrum = options.trimSpectrum;
   planOptions.aim = options.aim;
+  planOptions.trimPixels = options.trimPixels;
   result.plan = buildTracePlan(scene, options.seed, planOptions);
   const TracePlan& plan = result.plan;
 

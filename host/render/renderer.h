@@ -30,6 +30,7 @@ struct RenderOptions {
   // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
   uint32_t specialisedFeatures = kSpecialiseAll;
   bool trimSpectrum = true;          // store only the bins the lights can reach
+  bool trimPixels = true;            // store only the pixels beams can reach
   bool aim = true;                   // beams only towards the camera, weighted (see TracePlanOptions)
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
