@@ -151,7 +151,7 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
       RenderOptions options;
       options.beams = 1'000'000;
       options.device = DeviceChoice::Gpu;
-      options.exactColour = exactColour;
+      options.plan.exactColour = exactColour;
       const RenderResult specialised = render(scene, options);
       options.specialisedFeatures = kSpecialiseNone;
       const RenderResult general = render(scene, options);
@@ -200,7 +200,7 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
       options.beams = 1'000'000;
       options.device = device;
       const RenderResult a = render(scene, options);
-      options.trimSpectrum = false;
+      options.plan.trimSpectrum = false;
       const RenderResult b = render(scene, options);
       EXPECT_EQ(b.plan.storedBins(), 94u);
       EXPECT_GT(a.histogram.total(), 100'000u);
@@ -256,7 +256,7 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     options.beams = 1'000'000;
     options.device = DeviceChoice::Gpu;
     const RenderResult a = render(c.scene, options);
-    options.trimPixels = false;
+    options.plan.trimPixels = false;
     const RenderResult b = render(c.scene, options);
     EXPECT_EQ(b.plan.storedPixelCount(), b.plan.pixelCount());
     EXPECT_GT(a.histogram.countedBeams, 10'000u) << c.name;

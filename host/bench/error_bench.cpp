@@ -117,11 +117,8 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
       const Scene scene = loadScene(path);
       const auto exact = exactSolution(scene);
       if (!exact) throw std::runtime_error(fmt::format("{}: no exact solution is known for this scene", path));
-      const ReferenceImage reference = toReference(*exact, options.exactColour);
-      TracePlanOptions planOptions;
-      planOptions.exactColour = options.exactColour;
-      planOptions.aim = options.aim;
-      const TracePlan plan = buildTracePlan(scene, options.seed, planOptions);
+      const ReferenceImage reference = toReference(*exact, options.plan.exactColour);
+      const TracePlan plan = buildTracePlan(scene, options.seed, options.plan);
       DeviceRun run(device, vulkan.get(), plan, scene);
       for (uint64_t beams : options.beamCounts) {
         SweepRow row;
@@ -129,8 +126,8 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
         row.device = device.kind;
         row.deviceName = device.name;
         row.beams = beams;
-        row.exactColour = options.exactColour;
-        row.aimed = options.aim;
+        row.exactColour = options.plan.exactColour;
+        row.aimed = options.plan.aim;
         for (const auto& light : plan.lights) row.aimedLights += light.aimed != 0;
         auto [image, histogram] = run.render(scene, beams, row);
         row.hits = histogram.countedBeams;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lights/trace_plan.h"
 #include "metrics/error_metrics.h"
 
 namespace spectrace {
@@ -40,8 +41,7 @@ struct SweepOptions {
   std::vector<std::string> scenes;    // paths of reference scene files
   std::vector<uint64_t> beamCounts;   // e.g. 1e3 .. 1e8
   uint64_t seed = 1;
-  bool exactColour = true;
-  bool aim = true;                    // aimed sampling (false: analog, --no-aim)
+  TracePlanOptions plan;              // exact colour, aiming (false: analog, --no-aim), ...
   std::function<void(const SweepRow&)> onRow;
 };
 

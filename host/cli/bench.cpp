@@ -77,7 +77,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
           timedRender(scene, device.kind == "gpu" ? DeviceChoice::Gpu : DeviceChoice::Cpu, command.beams, cancel,
                       [&](RenderOptions& o) {
                         o.cpuThreads = command.threads;
-                        o.exactColour = exactColour;
+                        o.plan.exactColour = exactColour;
                       });
       ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.countedBeams,
                         result.traceWallSeconds, result.traceDeviceSeconds};
@@ -170,8 +170,8 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
       const auto best = interleavedBest(2, kTimingRounds, [&](size_t v) {
         const bool trim = v == 1;
         RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel, [&](RenderOptions& o) {
-          o.trimSpectrum = trim;
-          o.trimPixels = trim;
+          o.plan.trimSpectrum = trim;
+          o.plan.trimPixels = trim;
         });
         const double mib = double(result.plan.storedPixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
         (trim ? row.storedBins : row.fullBins) = result.plan.storedBins();
@@ -213,7 +213,7 @@ std::vector<AimRow> runAimStudy(const std::vector<BenchDevice>& devices, const s
         SweepOptions options;
         options.scenes = {(dir / (std::string(c.scene) + ".json")).string()};
         options.beamCounts = {aim ? c.aimedBeams : c.analogBeams};
-        options.aim = aim;
+        options.plan.aim = aim;
         (aim ? row.aimed : row.analog) = runErrorSweep({device}, options).front();
       }
       for (const SweepRow* r : {&row.aimed, &row.analog})

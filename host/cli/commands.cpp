@@ -54,17 +54,17 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   options.cpuThreads = command.threads;
   options.cancel = &cancel;
   options.checkpointSeconds = command.checkpointSeconds;
-  options.trimSpectrum = !command.fullSpectrum;
-  options.trimPixels = !command.fullSensor;
+  options.plan.trimSpectrum = !command.fullSpectrum;
+  options.plan.trimPixels = !command.fullSensor;
   options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
-  options.aim = !command.noAim;
+  options.plan.aim = !command.noAim;
   if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
 
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // A checkpoint is a complete, valid image of the beams finished so far.
   options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
-    writeExr(output, image, metadataFor(scene, device, options.aim, options.seed, options.firstBeam, done, elapsed()));
+    writeExr(output, image, metadataFor(scene, device, options.plan.aim, options.seed, options.firstBeam, done, elapsed()));
     if (!command.quiet) std::fprintf(stderr, "spectrace: checkpoint: %llu beams -> %s\n", (unsigned long long)done, output.c_str());
   };
   if (!command.quiet) {
@@ -86,7 +86,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
                      light.largestWeight);
     }
   }
-  writeExr(output, result.image, metadataFor(scene, result.deviceLabel(), options.aim, options.seed, options.firstBeam,
+  writeExr(output, result.image, metadataFor(scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
                                              result.beamsTraced, result.wallSeconds));
   if (command.png) writePngPreview(png, result.image);
   if (!command.quiet) {

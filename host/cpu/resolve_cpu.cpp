@@ -23,7 +23,8 @@ RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParame
     }
     xyz *= parameters.irradiancePerCount;
     if (parameters.useExactColour && histogram.hasExactColour()) {
-      const double perUnit = 683.0 * parameters.irradiancePerBeam / double(device::kColourFixedPointScale);
+      const double perBeam = parameters.irradiancePerCount * double(histogram.unitsPerBeam);
+      const double perUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
       for (int k = 0; k < 3; ++k) xyz[k] = double(histogram.colourSums[p * 3 + k]) * perUnit;
     }
     const glm::dvec3 rgb = parameters.xyzToRgb * xyz;

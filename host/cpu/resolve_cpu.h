@@ -16,11 +16,10 @@ namespace spectrace {
 struct ResolveParameters {
   std::vector<std::array<double, 3>> binWeights;
   glm::dmat3 xyzToRgb{1.0};
-  double irradiancePerCount = 0.0;  // W/m^2 per count (per bin counter unit)
-  // W/m^2 per full-weight beam: the scale of the per-beam colour sums, which
-  // are in units of CMF x weight ratio, not of counts. Equals
-  // irradiancePerCount x the histogram's unitsPerBeam.
-  double irradiancePerBeam = 0.0;
+  // W/m^2 per count (per bin counter unit). A full-weight beam adds
+  // unitsPerBeam counts, and its colour sums are in CMF x weight ratio, so
+  // they scale with irradiancePerCount x unitsPerBeam.
+  double irradiancePerCount = 0.0;
   // Take XYZ from the per-beam colour sums when the histogram has them
   // (exact whatever the bin count), else from the bin-averaged CMFs.
   bool useExactColour = true;

@@ -190,7 +190,7 @@ double aimLight(const Light& light, const glm::dvec3& position, const glm::dvec3
 struct LightReach {
   std::vector<glm::dvec3> corners;
   bool laser = false;
-  glm::dvec3 axis{0.0};
+  glm::dvec3 centre{0.0}, axis{0.0};
   double radius = 0.0;
 };
 
@@ -198,6 +198,7 @@ LightReach lightReach(const Light& light, const glm::dvec3& position, const glm:
                       const glm::dvec3& bitangent) {
   LightReach reach;
   reach.laser = light.type == LightType::Laser;
+  reach.centre = position;
   reach.axis = axis;
   reach.radius = light.radiusM;
   double u = 0.0, v = 0.0;  // half extents along tangent, bitangent
@@ -211,8 +212,9 @@ LightReach lightReach(const Light& light, const glm::dvec3& position, const glm:
   return reach;
 }
 
-// The pixels any counted beam can land on (plus a pixel of margin for float
-// rounding), or the whole sensor when that cannot be bounded.
+// Narrows the stored window (c.window*, the whole sensor on entry) to the
+// pixels any counted beam can land on, plus a pixel of margin for float
+// rounding; leaves it whole when that cannot be bounded.
 // - Pinhole at distance D, radius r: a beam from P (height h = P.z - D > 0)
 //   through the aperture point A hits H = A (1 + D/h) - P_xy D/h, inside the
 //   disk about -P_xy D/h of radius r (1 + D/h). Over a convex emitter with
@@ -220,11 +222,7 @@ LightReach lightReach(const Light& light, const glm::dvec3& position, const glm:
 //   (a perspective map keeps segments straight), and 1 + D/h <= 1 + D/h_min.
 // - Bare sensor: only lasers are bounded: the beam's footprint lies within
 //   R / |a.z| of where its axis meets the sensor.
-device::TraceConstants pixelWindow(const Camera& camera, const std::vector<LightReach>& lights,
-                                   device::TraceConstants c) {
-  c.windowX0 = c.windowY0 = 0;
-  c.windowWidth = uint32_t(camera.pixelsX);
-  c.windowHeight = uint32_t(camera.pixelsY);
+void narrowPixelWindow(const Camera& camera, const std::vector<LightReach>& lights, device::TraceConstants& c) {
   const double halfW = 0.5 * camera.sensorWidthM, halfH = 0.5 * camera.sensorHeightM;
   glm::dvec2 lo(INFINITY), hi(-INFINITY);  // sensor-plane bounds of every hit
   for (const LightReach& light : lights) {
@@ -233,7 +231,7 @@ device::TraceConstants pixelWindow(const Camera& camera, const std::vector<Light
       double hMin = INFINITY;
       for (const glm::dvec3& p : light.corners) {
         const double h = p.z - d;
-        if (!(h > 0.0)) return c;  // part of the emitter at or behind the aperture plane
+        if (!(h > 0.0)) return;  // part of the emitter at or behind the aperture plane
         hMin = std::min(hMin, h);
         const glm::dvec2 centre = -glm::dvec2(p.x, p.y) * (d / h);
         lo = glm::min(lo, centre);
@@ -243,16 +241,15 @@ device::TraceConstants pixelWindow(const Camera& camera, const std::vector<Light
       lo -= blur;
       hi += blur;
     } else {
-      if (!light.laser || !(light.axis.z < 0.0)) return c;
-      const glm::dvec3 centre3 = 0.25 * (light.corners[0] + light.corners[1] + light.corners[2] + light.corners[3]);
-      const double t = centre3.z / -light.axis.z;
-      const glm::dvec2 centre(centre3.x + t * light.axis.x, centre3.y + t * light.axis.y);
+      if (!light.laser || !(light.axis.z < 0.0)) return;
+      const double t = light.centre.z / -light.axis.z;
+      const glm::dvec2 centre(light.centre.x + t * light.axis.x, light.centre.y + t * light.axis.y);
       const double extent = light.radius / -light.axis.z;
       lo = glm::min(lo, centre - extent);
       hi = glm::max(hi, centre + extent);
     }
   }
-  if (!(std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y))) return c;
+  if (!(std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y))) return;
   // Sensor coordinates to pixel columns and rows (hitSensor: a pinhole image
   // is flipped upright), widened by a pixel for rounding.
   const double ppmX = camera.pixelsX / camera.sensorWidthM, ppmY = camera.pixelsY / camera.sensorHeightM;
@@ -275,7 +272,6 @@ device::TraceConstants pixelWindow(const Camera& camera, const std::vector<Light
   c.windowY0 = uint32_t(r0);
   c.windowWidth = uint32_t(c1 - c0) + 1;
   c.windowHeight = uint32_t(r1 - r0) + 1;
-  return c;
 }
 
 std::string sceneName(const Scene& scene) {
@@ -417,7 +413,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   c.windowX0 = c.windowY0 = 0;
   c.windowWidth = plan.pixelsX;
   c.windowHeight = plan.pixelsY;
-  if (options.trimPixels) c = pixelWindow(camera, reaches, c);
+  if (options.trimPixels) narrowPixelWindow(camera, reaches, c);
   return plan;
 }
 

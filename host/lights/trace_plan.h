@@ -50,6 +50,12 @@ struct TracePlan {
     const uint64_t row = stored / constants.windowWidth, column = stored % constants.windowWidth;
     return (row + constants.windowY0) * pixelsX + column + constants.windowX0;
   }
+  // Whether the device stores pixel `pixel` (row-major over the sensor).
+  bool storesPixel(uint64_t pixel) const {
+    const uint64_t row = pixel / pixelsX, column = pixel % pixelsX;
+    return row >= constants.windowY0 && row < uint64_t(constants.windowY0) + constants.windowHeight &&
+           column >= constants.windowX0 && column < uint64_t(constants.windowX0) + constants.windowWidth;
+  }
   bool weighted() const { return constants.weightUnits != 1; }
   // An all-zero histogram of this plan's shape (all bins of the spectrum).
   SpectralHistogram emptyHistogram() const {

@@ -230,10 +230,8 @@ void packDeviceCounters(const SpectralHistogram& histogram, const TracePlan& pla
                         std::span<uint64_t> out) {
   const uint32_t stride = plan.countersPerPixel(), stored = plan.storedBins(), first = plan.firstStoredBin();
   // Pixels outside the stored window must be empty.
-  std::vector<bool> inWindow(plan.pixelCount(), false);
-  for (uint64_t s = 0; s < plan.storedPixelCount(); ++s) inWindow[plan.fullPixelOfStored(s)] = true;
   for (uint64_t p = 0; p < plan.pixelCount(); ++p) {
-    if (inWindow[p]) continue;
+    if (plan.storesPixel(p)) continue;
     for (uint32_t b = 0; b < plan.bins; ++b)
       if (histogram.counts[p * plan.bins + b] != 0)
         throw std::invalid_argument("counts in pixels outside the stored window");
@@ -278,7 +276,8 @@ device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolvePa
   constants.countersPerPixel = plan.countersPerPixel();
   constants.exactColour = parameters.useExactColour && plan.exactColour() ? 1u : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
-  constants.xyzPerColourUnit = float(683.0 * parameters.irradiancePerBeam / device::kColourFixedPointScale);
+  const double perBeam = parameters.irradiancePerCount * double(plan.constants.weightUnits);
+  constants.xyzPerColourUnit = float(683.0 * perBeam / device::kColourFixedPointScale);
   // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
   const glm::dmat3& m = parameters.xyzToRgb;
   constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);

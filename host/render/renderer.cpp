@@ -29,7 +29,6 @@ ResolveParameters resolveParametersFor(const Scene& scene, const TracePlan& plan
     for (double& v : w) v *= kLumensPerWatt;
   parameters.xyzToRgb = xyzToLinearSrgb();
   parameters.irradiancePerCount = beams > 0 ? plan.irradiancePerCount(beams) : 0.0;
-  parameters.irradiancePerBeam = parameters.irradiancePerCount * double(plan.constants.weightUnits);
   return parameters;
 }
 
@@ -69,12 +68,7 @@ uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const Rend
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto start = Clock::now();
   RenderResult result;
-  TracePlanOptions planOptions;
-  planOptions.exactColour = options.exactColour;
-  planOptions.trimSpectrum = options.trimSpectrum;
-  planOptions.aim = options.aim;
-  planOptions.trimPixels = options.trimPixels;
-  result.plan = buildTracePlan(scene, options.seed, planOptions);
+  result.plan = buildTracePlan(scene, options.seed, options.plan);
   const TracePlan& plan = result.plan;
 
   std::unique_ptr<vk_util::Context> vulkan;

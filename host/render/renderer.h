@@ -25,13 +25,10 @@ struct RenderOptions {
   DeviceChoice device = DeviceChoice::Auto;
   unsigned cpuThreads = 0;           // 0: all hardware threads
   uint32_t workgroupSize = 64;
-  bool exactColour = true;           // per-beam CMF sums (see TracePlanOptions)
+  TracePlanOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights
   // GPU: the scene features the trace pipeline is compiled for
   // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
   uint32_t specialisedFeatures = kSpecialiseAll;
-  bool trimSpectrum = true;          // store only the bins the lights can reach
-  bool trimPixels = true;            // store only the pixels beams can reach
-  bool aim = true;                   // beams only towards the camera, weighted (see TracePlanOptions)
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
