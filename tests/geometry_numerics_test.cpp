@@ -205,6 +205,23 @@ double beamByBeamAgreement(const TracePlan& plan, uint64_t firstBeam, uint32_t c
   return agreement.rate;
 }
 
+// The whole check of one plan: `beams` on the GPU and a quarter of them on
+// the CPU against beams * gain * p(pixel), the GPU's resolved image finite,
+// and the two devices beam by beam on the first `agreementBeams`. Returns
+// the GPU's statistics.
+MatchStats expectCountsMatchOnBothDevices(const Scene& scene, const TracePlan& plan, uint64_t beams,
+                                          const std::function<double(const PixelRect&)>& probability,
+                                          const std::string& name, uint32_t agreementBeams) {
+  const GpuRun run = traceOnGpu(scene, plan, 0, beams);
+  const MatchStats stats = expectCountsMatch(run.histogram, scene.camera, beams, aimGain(plan), probability, name + " (GPU)");
+  expectFiniteImage(run.image, name);
+  SpectralHistogram cpu;
+  traceOnCpu(plan, 0, beams / 4, cpu);
+  expectCountsMatch(cpu, scene.camera, beams / 4, aimGain(plan), probability, name + " (CPU)");
+  EXPECT_GE(beamByBeamAgreement(plan, 0, agreementBeams, name), 0.9999);
+  return stats;
+}
+
 Scene bareSensor(double widthM, double heightM, int pixelsX, int pixelsY) {
   return testing::bareSensorScene(widthM, heightM, pixelsX, pixelsY, 4);
 }
@@ -241,15 +258,8 @@ TEST(GeometryNumericsScale, SpotAMillionMetresFromAMillimetreSensor) {
   auto probability = [&](const PixelRect& r) {
     return rectangleSolidAngle(r.x1, r.x2, r.y1, r.y2, light.x, light.y, light.z) / coneSolidAngle;
   };
-  const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-  const MatchStats stats = expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, "spot at 1e6 m (GPU)");
+  const MatchStats stats = expectCountsMatchOnBothDevices(scene, plan, kBeams, probability, "spot at 1e6 m", 500'000);
   EXPECT_GT(stats.hits, kBeams / 3);
-  expectFiniteImage(run.image, "spot at 1e6 m");
-
-  SpectralHistogram cpu;
-  traceOnCpu(plan, 0, kBeams / 4, cpu);
-  expectCountsMatch(cpu, scene.camera, kBeams / 4, aimGain(plan), probability, "spot at 1e6 m (CPU)");
-  EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, "spot at 1e6 m"), 0.9999);
 }
 
 TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
@@ -268,13 +278,7 @@ TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
         if (std::hypot(x - centre.x, y - centre.y) >= kRadius) ADD_FAILURE() << "pixel not inside the laser disk";
     return (r.x2 - r.x1) * (r.y2 - r.y1) / (M_PI * kRadius * kRadius);
   };
-  const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
-  expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, "laser at 1e6 m (GPU)");
-  expectFiniteImage(run.image, "laser at 1e6 m");
-  SpectralHistogram cpu;
-  traceOnCpu(plan, 0, kBeams / 4, cpu);
-  expectCountsMatch(cpu, scene.camera, kBeams / 4, aimGain(plan), probability, "laser at 1e6 m (CPU)");
-  EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, "laser at 1e6 m"), 0.9999);
+  expectCountsMatchOnBothDevices(scene, plan, kBeams, probability, "laser at 1e6 m", 500'000);
 }
 
 TEST(GeometryNumericsScale, MicrometrePixels) {
@@ -406,14 +410,8 @@ TEST(GeometryNumericsAngles, GrazingLaserMatchesItsEllipticFootprint) {
       return diskShareBelow((r.x2 - g.hit.x) / g.footprintHalfLength) -
              diskShareBelow((r.x1 - g.hit.x) / g.footprintHalfLength);
     };
-    const GpuRun run = traceOnGpu(g.scene, plan, 0, kBeams);
-    const MatchStats stats = expectCountsMatch(run.histogram, g.scene.camera, kBeams, aimGain(plan), probability, name + " (GPU)");
+    const MatchStats stats = expectCountsMatchOnBothDevices(g.scene, plan, kBeams, probability, name, 200'000);
     EXPECT_GT(stats.hits, kBeams * 99 / 100) << name << ": the whole footprint lies on the sensor";
-    expectFiniteImage(run.image, name);
-    SpectralHistogram cpu;
-    traceOnCpu(plan, 0, kBeams / 4, cpu);
-    expectCountsMatch(cpu, g.scene.camera, kBeams / 4, aimGain(plan), probability, name + " (CPU)");
-    EXPECT_GE(beamByBeamAgreement(plan, 0, 200'000, name), 0.9999);
   }
 }
 
