@@ -1,42 +1,12 @@
-// Beam generation and camera intersection, written once in the common subset
-// of GLSL and C++/GLM. The shaders include it directly; the CPU reference
-// includes it inside namespace spectrace::device (host/cpu/beam_math_cpu.h).
-// Sharing one text keeps the order of every float operation identical, and
-// PRECISE (GLSL `precise`, i.e. SPIR-V NoContraction) stops the shader
-// compiler from fusing or reordering it; the host builds with
-// -ffp-contract=off. Only + - * / and sqrt are used: they are correctly
-// rounded on both sides, unlike sin/cos, which are replaced by polynomials.
-//
-// The includer provides:
-//   uint64_t readLightCdf(uint light)          LightRecord.selectCdfLow
-//   uint64_t readSpectralCdf(uint interval)    SpectralInterval.cdfLow
-// and the types of device_shared.h.
+// Sampling and geometry maths of the shared kernel, written once in the
+// common subset of GLSL and C++/GLM (kernel_lang.h). Only + - * / and sqrt
+// are used: they are correctly rounded on both sides, unlike sin/cos, which
+// are replaced by polynomials. The light units (lights/), emission
+// (emit.h) and the sensor (sensor.h) build on these.
 #ifndef SPECTRACE_BEAM_MATH_H
 #define SPECTRACE_BEAM_MATH_H
 
-#ifdef __cplusplus
-#define PRECISE
-#define OUT(T) T&
-#define FN inline
-#else
-#define PRECISE precise
-#define OUT(T) out T
-#define FN
-#endif
-
-// Feature switches. The trace shader defines them from specialisation
-// constants, so a pipeline built for a scene compiles out what the scene
-// lacks; these defaults (everything decided at run time) are the general
-// pipeline's, and the CPU reference's.
-#ifndef SPECTRACE_LIGHT_ENABLED
-#define SPECTRACE_LIGHT_ENABLED(type) true
-#endif
-#ifndef SPECTRACE_PINHOLE
-#define SPECTRACE_PINHOLE(apertureDistance) ((apertureDistance) > 0.0f)
-#endif
-#ifndef SPECTRACE_AIM
-#define SPECTRACE_AIM true
-#endif
+#include "kernel_lang.h"
 
 // (x >> 8) * 2^-24: exact in float32, in [0, 1 - 2^-24].
 FN float uniformFromWord(uint x) { return float(x >> 8) * (1.0f / 16777216.0f); }
@@ -154,49 +124,6 @@ FN vec3 toFrame(vec3 local, vec3 tangent, vec3 bitangent, vec3 axis) {
   return w;
 }
 
-// Where a beam leaves a light: the light's position, or a point uniform
-// over its disk or rectangle, from two uniforms.
-FN vec3 emitOrigin(uint type, vec3 position, vec3 tangent, vec3 bitangent, float param0, float param1, float ou,
-                   float ov) {
-  vec3 origin = position;
-  if ((SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) ||
-      (SPECTRACE_LIGHT_ENABLED(kLightLaser) && type == kLightLaser)) {
-    vec2 p = sampleDisk(ou, ov, param0);
-    PRECISE vec3 o = position + tangent * p.x + bitangent * p.y;
-    origin = o;
-  } else if (SPECTRACE_LIGHT_ENABLED(kLightRect) && type == kLightRect) {
-    PRECISE float x = (ou - 0.5f) * param0;
-    PRECISE float y = (ov - 0.5f) * param1;
-    PRECISE vec3 o = position + tangent * x + bitangent * y;
-    origin = o;
-  }
-  return origin;
-}
-
-// The direction of an unaimed (analog) beam, drawn from the light's own
-// emission distribution, from two uniforms.
-FN vec3 emitDirection(uint type, vec3 axis, vec3 tangent, vec3 bitangent, float param0, float du, float dv) {
-  vec3 direction = axis;  // laser: collimated
-  if (SPECTRACE_LIGHT_ENABLED(kLightPoint) && type == kLightPoint) {
-    direction = sampleSphere(du, dv);
-  } else if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && type == kLightSpot) {
-    direction = toFrame(sampleCone(du, dv, param0), tangent, bitangent, axis);
-  } else if ((SPECTRACE_LIGHT_ENABLED(kLightDisk) && type == kLightDisk) ||
-             (SPECTRACE_LIGHT_ENABLED(kLightRect) && type == kLightRect)) {
-    direction = toFrame(sampleCosineHemisphere(du, dv), tangent, bitangent, axis);
-  }
-  return direction;
-}
-
-// The seed's getNextBeam(), unaimed: origin and direction of a beam from one
-// light, in the camera frame, from four uniforms (origin u, v; direction u, v).
-FN void emitBeam(uint type, vec3 position, vec3 axis, vec3 tangent, vec3 bitangent,
-                 float param0, float param1, float ou, float ov, float du, float dv,
-                 OUT(vec3) origin, OUT(vec3) direction) {
-  origin = emitOrigin(type, position, tangent, bitangent, param0, param1, ou, ov);
-  direction = emitDirection(type, axis, tangent, bitangent, param0, du, dv);
-}
-
 // Dot and cross products with a fixed order of operations (the built-ins'
 // order, and whether they fuse, is up to the compiler).
 FN float dot3(vec3 a, vec3 b) {
@@ -231,42 +158,5 @@ FN float oneMinusCosFromSin(float s) {
 // float rounding of cone axes and directions (a few 1e-8), so the cone
 // always holds every direction that can be counted.
 #define SPECTRACE_AIM_SLACK 4.0e-7f
-
-// The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
-// camera frame and looks along +z, so a beam counts only when it travels
-// towards -z from z > 0 (with a pinhole: from beyond the aperture plane and
-// through the aperture disk). Returns the pixel index, or false for a miss.
-// A beam parallel to the sensor (direction.z == 0) never reaches the
-// division; NaN or infinite hit points fail the bounds tests.
-FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetre, uint pixelsX,
-                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uint) pixel) {
-  pixel = 0u;
-  if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
-  PRECISE float hx;
-  PRECISE float hy;
-  bool flip = SPECTRACE_PINHOLE(apertureDistance);
-  if (flip) {
-    PRECISE float ta = (origin.z - apertureDistance) / -direction.z;
-    PRECISE float ax = origin.x + ta * direction.x;
-    PRECISE float ay = origin.y + ta * direction.y;
-    if (!(ax * ax + ay * ay <= apertureRadiusSq)) return false;
-    PRECISE float ts = apertureDistance / -direction.z;
-    hx = ax + ts * direction.x;
-    hy = ay + ts * direction.y;
-  } else {
-    PRECISE float t = origin.z / -direction.z;
-    hx = origin.x + t * direction.x;
-    hy = origin.y + t * direction.y;
-  }
-  if (!(abs(hx) < halfSize.x) || !(abs(hy) < halfSize.y)) return false;
-  // Image columns run along +x (camera right) and rows down from +y; a
-  // pinhole image is inverted on the sensor, so flip it upright.
-  PRECISE float fx = flip ? (halfSize.x - hx) * pixelsPerMetre.x : (hx + halfSize.x) * pixelsPerMetre.x;
-  PRECISE float fy = flip ? (hy + halfSize.y) * pixelsPerMetre.y : (halfSize.y - hy) * pixelsPerMetre.y;
-  uint column = min(uint(max(fx, 0.0f)), pixelsX - 1u);
-  uint row = min(uint(max(fy, 0.0f)), pixelsY - 1u);
-  pixel = row * pixelsX + column;
-  return true;
-}
 
 #endif  // SPECTRACE_BEAM_MATH_H

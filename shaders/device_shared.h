@@ -13,45 +13,73 @@ using uint = uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 #define SPECTRACE_CONSTANT constexpr
+#define SPECTRACE_LAYOUT_FN constexpr
 #else
 #define SPECTRACE_CONSTANT const
+#define SPECTRACE_LAYOUT_FN
 #endif
 
-// Descriptor bindings of the trace pipeline (set 0).
-SPECTRACE_CONSTANT uint kBindingTraceConstants = 0;
-SPECTRACE_CONSTANT uint kBindingLights = 1;
-SPECTRACE_CONSTANT uint kBindingSpectralIntervals = 2;
-SPECTRACE_CONSTANT uint kBindingHistogram = 3;  // array of kMaxHistogramChunks
-SPECTRACE_CONSTANT uint kBindingBeamRecords = 4;  // only read with kSpecRecordBeams
-SPECTRACE_CONSTANT uint kBindingCmfTable = 5;     // vec3 per node, for exact colour
-SPECTRACE_CONSTANT uint kBindingTraceStats = 6;   // TraceStats
-// Resolve pipeline (set 0).
-SPECTRACE_CONSTANT uint kBindingResolveConstants = 0;
-SPECTRACE_CONSTANT uint kBindingBinWeights = 1;
-SPECTRACE_CONSTANT uint kBindingResolvedPixels = 2;
-SPECTRACE_CONSTANT uint kBindingResolveHistogram = 3;  // array of kMaxHistogramChunks
-// RNG check pipeline.
-SPECTRACE_CONSTANT uint kBindingRngWords = 0;
+// Descriptor bindings, one typed list per pipeline (set 0). C++ gets an
+// enum, GLSL constants; kTraceBindings and its twins below are each
+// pipeline's one table, which the host turns into both the descriptor set
+// layout and the checks that every slot was written.
+#ifdef __cplusplus
+#define START_BINDING(name) enum name : uint32_t {
+#define END_BINDING() }
+#else
+#define START_BINDING(name) const uint
+#define END_BINDING()
+#endif
+
+START_BINDING(TraceBinding)
+  kBindingTraceConstants = 0,
+  kBindingLights = 1,
+  kBindingSpectralIntervals = 2,
+  kBindingHistogram = 3,    // array of kMaxHistogramChunks
+  kBindingBeamRecords = 4,  // only written with kSpecRecordBeams
+  kBindingCmfTable = 5,     // vec3 per node, for exact colour
+  kBindingTraceStats = 6    // TraceStats
+END_BINDING();
+START_BINDING(ResolveBinding)
+  kBindingResolveConstants = 0,
+  kBindingBinWeights = 1,
+  kBindingResolvedPixels = 2,
+  kBindingResolveHistogram = 3  // array of kMaxHistogramChunks
+END_BINDING();
+START_BINDING(RngCheckBinding)
+  kBindingRngWords = 0
+END_BINDING();
 
 // Histograms larger than maxStorageBufferRange are split into up to this many
 // buffers, each holding whole pixels. A fixed array indexed through a switch
 // works without non-uniform descriptor indexing (lavapipe lacks it).
 SPECTRACE_CONSTANT uint kMaxHistogramChunks = 8;
 
-// Specialisation constant ids.
-SPECTRACE_CONSTANT uint kSpecWorkgroupSize = 0;
-// Trace pass, scene specialisation: a bit per light type present; whether to
-// choose among lights; bare (0) / pinhole (1) / decide at run time (2);
-// exact colour off (0) / on (1) / at run time (2).
-SPECTRACE_CONSTANT uint kSpecLightTypes = 2;
-SPECTRACE_CONSTANT uint kSpecSelectLight = 3;
-SPECTRACE_CONSTANT uint kSpecPinhole = 4;
-SPECTRACE_CONSTANT uint kSpecExactColour = 5;
-// Aimed sampling: no light aimed (0) / some (1) / at run time (2).
-SPECTRACE_CONSTANT uint kSpecAim = 6;
-// Trace pass: when 1, write each beam's (pixel, bin) to the beam records
-// instead of counting it (for beam-by-beam CPU/GPU comparison).
-SPECTRACE_CONSTANT uint kSpecRecordBeams = 1;
+// Light types (spectrace::LightType takes its values from these). One
+// kernel unit per type in shaders/lights/, one host unit in host/lights/.
+SPECTRACE_CONSTANT uint kLightPoint = 0;
+SPECTRACE_CONSTANT uint kLightSpot = 1;
+SPECTRACE_CONSTANT uint kLightDisk = 2;
+SPECTRACE_CONSTANT uint kLightRect = 3;
+SPECTRACE_CONSTANT uint kLightLaser = 4;
+SPECTRACE_CONSTANT uint kLightTypeCount = 5;
+SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit per type
+
+// Specialisation constant ids. Every pipeline has the workgroup size; the
+// trace pipeline's others fix scene features (the defaults, in
+// trace_beams.comp, are the general pipeline's: decide at run time):
+// a bit per light type present; whether to choose among lights; bare (0) /
+// pinhole (1) / run time (2); exact colour off (0) / on (1) / run time (2);
+// no light aimed (0) / some (1) / run time (2).
+START_BINDING(SpecConstantId)
+  kSpecWorkgroupSize = 0,
+  kSpecRecordBeams = 1,  // 1: write each beam's (pixel, bin) to the beam records instead of counting it
+  kSpecLightTypes = 2,
+  kSpecSelectLight = 3,
+  kSpecPinhole = 4,
+  kSpecExactColour = 5,
+  kSpecAim = 6
+END_BINDING();
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
 
@@ -65,13 +93,6 @@ SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
 // 2^24, so a uint64 counter holds 2^40 = 1.1e12 full-weight beams in one
 // pixel-bin, and the quantum is 6e-8 of a beam.
 SPECTRACE_CONSTANT uint kWeightUnitsFractional = 16777216u;  // 2^24
-
-// Light types (match spectrace::LightType).
-SPECTRACE_CONSTANT uint kLightPoint = 0;
-SPECTRACE_CONSTANT uint kLightSpot = 1;
-SPECTRACE_CONSTANT uint kLightDisk = 2;
-SPECTRACE_CONSTANT uint kLightRect = 3;
-SPECTRACE_CONSTANT uint kLightLaser = 4;
 
 // Philox counter blocks: each gives four 32-bit words per beam. Light choice
 // has its own block, so single-light scenes draw two blocks, not three.
@@ -124,8 +145,7 @@ struct SpectralInterval {
 SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
 
 // Scene-wide constants of the trace pass. Each stored pixel owns countersPerPixel
-// 64-bit counters: `bins` wavelength bins, then X, Y, Z when exactColour,
-// then the sum of squared weights when weightUnits > 1.
+// 64-bit counters (countersPerPixelOf, below).
 // The stored bins are bins [binOffset, binOffset + bins) of the spectrum's
 // totalBins: those the scene's lights can reach (a trimmed spectrum).
 struct TraceConstants {
@@ -140,7 +160,7 @@ struct TraceConstants {
   float apertureDistance;   // metres in front of the sensor; 0 = bare sensor
   float apertureRadiusSq;   // metres^2
   uint pixelsPerChunk;      // histogram chunk size in whole pixels
-  uint countersPerPixel;    // bins, or bins + 3 with exact colour
+  uint countersPerPixel;    // countersPerPixelOf(bins, exactColour, weightUnits > 1)
   uint exactColour;         // 1: accumulate per-beam CMF values
   uint cmfCount;            // nodes of the CMF table
   float cmfLambdaMin;       // nm of node 0
@@ -161,6 +181,18 @@ struct TraceConstants {
   uint padding0;
   uint64_t seed;
 };
+
+// The film's counter layout, defined only here: each stored pixel owns
+// countersPerPixel 64-bit counters, its stored bins, then X, Y, Z when
+// exact colour is on, then the sum of squared weights when weights vary
+// (weightUnits > 1). host/film and the kernel both read it from these.
+SPECTRACE_LAYOUT_FN uint colourCounterOffset(uint bins) { return bins; }
+SPECTRACE_LAYOUT_FN uint squaredWeightCounterOffset(uint bins, bool exactColour) {
+  return bins + (exactColour ? 3u : 0u);
+}
+SPECTRACE_LAYOUT_FN uint countersPerPixelOf(uint bins, bool exactColour, bool weighted) {
+  return squaredWeightCounterOffset(bins, exactColour) + (weighted ? 1u : 0u);
+}
 
 // Totals of the trace pass, besides the histogram.
 struct TraceStats {
@@ -218,6 +250,22 @@ struct RngCheckPush {
 };
 
 #ifdef __cplusplus
+// Each pipeline's binding list: the one table its descriptor set layout
+// is built from (host/backend), beside the typed enums above.
+struct BindingSlot {
+  uint32_t binding;
+  uint32_t count;  // > 1: an array of storage buffers
+};
+inline constexpr BindingSlot kTraceBindings[] = {
+    {kBindingTraceConstants, 1}, {kBindingLights, 1},      {kBindingSpectralIntervals, 1},
+    {kBindingHistogram, kMaxHistogramChunks},               {kBindingBeamRecords, 1},
+    {kBindingCmfTable, 1},       {kBindingTraceStats, 1}};
+inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
+                                                   {kBindingBinWeights, 1},
+                                                   {kBindingResolvedPixels, 1},
+                                                   {kBindingResolveHistogram, kMaxHistogramChunks}};
+inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
+
 static_assert(sizeof(LightRecord) == 136);
 static_assert(sizeof(SpectralInterval) == 24);
 static_assert(sizeof(TraceConstants) == 128);

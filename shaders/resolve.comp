@@ -7,7 +7,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "device_shared.h"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x_id = kSpecWorkgroupSize) in;
 
 layout(set = 0, binding = kBindingResolveConstants, scalar) readonly buffer ResolveConstantsBlock {
   ResolveConstants rc;
@@ -53,8 +53,9 @@ void main() {
   }
   vec3 xyz = weighted * rc.irradiancePerCount;
   if (rc.exactColour != 0u) {
-    xyz = vec3(float(readCount(chunk, base + rc.bins)), float(readCount(chunk, base + rc.bins + 1u)),
-               float(readCount(chunk, base + rc.bins + 2u))) * rc.xyzPerColourUnit;
+    uint colour = base + colourCounterOffset(rc.bins);
+    xyz = vec3(float(readCount(chunk, colour)), float(readCount(chunk, colour + 1u)),
+               float(readCount(chunk, colour + 2u))) * rc.xyzPerColourUnit;
   }
   ResolvedPixel result;
   result.xyz = xyz;

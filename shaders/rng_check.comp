@@ -6,7 +6,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "device_shared.h"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x_id = kSpecWorkgroupSize) in;
 layout(set = 0, binding = kBindingRngWords, scalar) writeonly buffer Words { uvec4 words[]; };
 layout(push_constant, scalar) uniform PushBlock { RngCheckPush push; };
 

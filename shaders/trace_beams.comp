@@ -1,26 +1,30 @@
 #version 460
-// Beam generation and counting: one invocation per beam. Hits are counted
-// with 64-bit integer atomics (exact, order-independent; float atomics stop
-// growing at 2^24).
+// Beam generation and counting: one invocation per beam, through the shared
+// kernel (trace.h). Hits are counted with 64-bit integer atomics (exact,
+// order-independent; float atomics stop growing at 2^24).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_atomic_int64 : require
 #include "device_shared.h"
+#include "kernel_lang.h"
+#include "kernel_interface.h"
 
-layout(local_size_x_id = 0) in;
-layout(constant_id = 1) const uint recordBeams = 0u;
-// Scene specialisation (device_shared.h: kSpec*); the defaults give the
-// general pipeline, which decides everything at run time.
-layout(constant_id = 2) const uint enabledLightTypes = 31u;  // bit per light type
-layout(constant_id = 3) const uint selectLight = 1u;         // 0: one light, no choice
-layout(constant_id = 4) const uint pinholeMode = 2u;         // 0 bare, 1 pinhole, 2 run time
-layout(constant_id = 5) const uint exactColourMode = 2u;     // 0 off, 1 on, 2 run time
-layout(constant_id = 6) const uint aimMode = 2u;             // 0 no light aimed, 1 some, 2 run time
+layout(local_size_x_id = kSpecWorkgroupSize) in;
+layout(constant_id = kSpecRecordBeams) const uint recordBeams = 0u;
+// Scene specialisation (device_shared.h: SpecConstantId); the defaults give
+// the general pipeline, which decides everything at run time.
+layout(constant_id = kSpecLightTypes) const uint enabledLightTypes = kAllLightTypes;  // bit per light type
+layout(constant_id = kSpecSelectLight) const uint selectLight = 1u;  // 0: one light, no choice
+layout(constant_id = kSpecPinhole) const uint pinholeMode = 2u;      // 0 bare, 1 pinhole, 2 run time
+layout(constant_id = kSpecExactColour) const uint exactColourMode = 2u;  // 0 off, 1 on, 2 run time
+layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no light aimed, 1 some, 2 run time
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
 #define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
 #define SPECTRACE_AIM (aimMode != 0u)
+#define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
+#define SPECTRACE_SQUARED_WEIGHTS (aimMode != 0u && constants.weightUnits != 1u)
 
 layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
   TraceConstants constants;
@@ -47,16 +51,13 @@ layout(push_constant, scalar) uniform PushBlock {
   TracePush push;
 };
 
+// The includer contract (kernel_interface.h).
+#include "philox.glsl"
 uint64_t readLightCdf(uint i) { return lights[i].selectCdfLow; }
 uint64_t readSpectralCdf(uint i) { return intervals[i].cdfLow; }
 LightRecord readLight(uint i) { return lights[i]; }
 SpectralInterval readInterval(uint i) { return intervals[i]; }
 vec3 readCmf(uint i) { return cmfTable[i]; }
-
-#include "philox.glsl"
-#include "beam_math.h"
-#include "beam_trace.h"
-
 // Constant indices only: no non-uniform descriptor indexing needed.
 void addCount(uint chunk, uint index, uint64_t amount) {
   switch (chunk) {
@@ -71,6 +72,8 @@ void addCount(uint chunk, uint index, uint64_t amount) {
   }
 }
 
+#include "trace.h"
+
 // Counted beams of this workgroup, added to stats with one atomic.
 shared uint groupCounted;
 
@@ -79,40 +82,18 @@ void main() {
   barrier();
   uint local = gl_GlobalInvocationID.y * push.beamsPerRow + gl_GlobalInvocationID.x;
   if (local < push.beamCount) {
-    uint pixel;
-    uint bin;
-    float lambda;
-    float spareUniform;
-    float ratio;
-    bool hit = traceBeam(push.beamBase + uint64_t(local), pixel, bin, lambda, spareUniform, ratio);
-    uint64_t units = hit ? weightUnitsOf(ratio, spareUniform) : 0ul;
+    uint64_t beamIndex = push.beamBase + uint64_t(local);
     if (recordBeams != 0u) {
-      beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(units), 0u) : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
-    } else if (hit) {
-      // The pixel's place in the stored window. The host proves every
-      // reachable pixel lies inside it; the guard keeps a disproof (which the
-      // tests comparing against the whole sensor would show) in bounds.
-      uint row = pixel / constants.pixelsX;
-      uint column = pixel - row * constants.pixelsX;
-      uint windowRow = row - constants.windowY0;  // wraps to large when row < windowY0
-      uint windowColumn = column - constants.windowX0;
-      if (windowRow < constants.windowHeight && windowColumn < constants.windowWidth) {
-        atomicAdd(groupCounted, 1u);
-        uint stored = windowRow * constants.windowWidth + windowColumn;
-        uint chunk = stored / constants.pixelsPerChunk;
-        uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
-        addCount(chunk, base + bin, units);
-        uint next = base + constants.bins;
-        if (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u) {
-          PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
-          addCount(chunk, next, colourFixedPoint(cmf.x, spareUniform));
-          addCount(chunk, next + 1u, colourFixedPoint(cmf.y, spareUniform));
-          addCount(chunk, next + 2u, colourFixedPoint(cmf.z, spareUniform));
-          next += 3u;
-        }
-        if (aimMode != 0u && constants.weightUnits != 1u)
-          addCount(chunk, next, squaredWeightUnitsOf(ratio, spareUniform));
-      }
+      uint pixel;
+      uint bin;
+      float lambda;
+      float spareUniform;
+      float ratio;
+      bool hit = traceBeam(beamIndex, pixel, bin, lambda, spareUniform, ratio);
+      beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(weightUnitsOf(ratio, spareUniform)), 0u)
+                               : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
+    } else if (traceAndCountBeam(beamIndex)) {
+      atomicAdd(groupCounted, 1u);
     }
   }
   barrier();

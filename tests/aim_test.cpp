@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "support/render_comparison.h"
 #include "support/test_scenes.h"
 
@@ -68,9 +68,9 @@ Scene aimScene(LightType type, bool pinhole) {
 }
 
 testing::PixelEstimates renderOnGpu(const TracePlan& plan, uint64_t beams) {
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, beams);
-  return testing::pixelEstimates(gpu.downloadHistogram(), plan, beams);
+  return testing::pixelEstimates(gpu.download(), plan, beams);
 }
 
 struct AimCase {
@@ -93,7 +93,7 @@ TEST_P(AimedVersusAnalog, SameExpectedImage) {
   EXPECT_EQ(analog.sampledPowerW, analog.tracedPowerW);
   // Area lights carry varying weights; the others weights of 1 or 0.
   const bool area = c.type == LightType::Disk || c.type == LightType::Rect;
-  EXPECT_EQ(aimed.weighted(), area);
+  EXPECT_EQ(aimed.film.weighted(), area);
 
   // Analog beams through a 1 mm pinhole are rare: give that side more.
   const uint64_t aimedBeams = 2'000'000, analogBeams = c.pinhole ? 16'000'000 : 4'000'000;
@@ -147,12 +147,12 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   Scene scene = aimScene(LightType::Disk, true);
   scene.lights[0].spd = makeLineSpd(550.0);
   const TracePlan plan = buildTracePlan(scene, 505);
-  ASSERT_TRUE(plan.weighted());
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  ASSERT_TRUE(plan.film.weighted());
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, 1'000'000);
-  const SpectralHistogram h = gpu.downloadHistogram();
+  const SpectralHistogram h = gpu.download();
   double y = 0.0;
-  for (size_t p = 0; p < plan.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
+  for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
   const double units = double(h.total());
   ASSERT_GT(h.countedBeams, 10'000u);
   const float ybar = device::BeamKernel(plan.constants, plan.lights, plan.intervals, plan.cmfTable).cmfAtWavelength(550.0f).y;

@@ -12,7 +12,7 @@
 #include <cstdio>
 
 #include "camera/camera_frame.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/statistics.h"
 #include "support/test_scenes.h"
@@ -38,7 +38,7 @@ void expectPointLightIrradiance(glm::dvec3 lightWorld, uint64_t beams, const cha
   options.seed = 2024;
   options.device = DeviceChoice::Gpu;
   const RenderResult result = render(scene, options);
-  ASSERT_EQ(result.deviceKind, "gpu");
+  ASSERT_EQ(result.deviceKind, DeviceKind::Vulkan);
 
   const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
   const glm::dvec3 light = frame.pointToLocal(lightWorld);

@@ -1,10 +1,9 @@
 // Integer numerics of the trace:
 //  - huge counts: a pixel-bin counter stays exact past 2^32 (and up to
 //    2^64 - 2^40) on the device, whose trace shader adds with 64-bit
-//    atomics, and in the CPU reference. GpuTracer cannot preset its
-//    histogram, so the real trace shader (embedded::spv_trace_beams) runs
-//    here through the vk_util layer on histogram buffers preset near those
-//    limits; the resolve shader then turns such counts into irradiance.
+//    atomics, and in the CPU reference: both tracers' films are preset near
+//    those limits (Tracer::upload); the resolve shader then turns such
+//    counts into irradiance.
 //  - beam indices past 2^32: beam i and beam i + 2^32 (or 2^40, 2^63, or
 //    the seed + 2^32) are independent, and renders whose beam indices start
 //    near 2^32, 2^40 and 2^64 match the exact irradiance of a point light.
@@ -18,28 +17,23 @@
 #include <string>
 #include <vector>
 
-#include "cpu/beam_kernel.h"
-#include "cpu/reference_tracer.h"
-#include "cpu/resolve_cpu.h"
+#include "kernel/beam_kernel.h"
+#include "support/cpu_trace.h"
+#include "film/develop.h"
 #include "camera/camera_frame.h"
-#include "embedded_shaders.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "rng/philox.h"
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
-#include "vulkan/buffer.h"
-#include "vulkan/compute_pipeline.h"
 
 namespace spectrace {
 namespace {
 
 using testing::pointLight;
 using testing::surfaceLight;
-using vk_util::Buffer;
-using vk_util::MemoryPlacement;
 
 using testing::propertyKey;
 
@@ -48,112 +42,20 @@ constexpr uint64_t k2To32 = uint64_t(1) << 32;
 constexpr uint64_t k2To40 = uint64_t(1) << 40;
 
 // ---------------------------------------------------------------------------
-// The trace and resolve shaders on caller-provided histogram buffers.
+// The Vulkan tracer on a film preset near the counters' limits.
 
-template <typename T>
-Buffer deviceBuffer(const vk_util::Context& context, const T* data, size_t count) {
-  Buffer buffer(context, std::max<vk::DeviceSize>(sizeof(T) * count, 16), {}, MemoryPlacement::DeviceLocal);
-  if (count) buffer.upload(data, sizeof(T) * count);
-  return buffer;
-}
-
-// The device layout, through the library's own conversion.
-std::vector<uint64_t> toDeviceLayout(const SpectralHistogram& h, const TracePlan& plan) {
-  std::vector<uint64_t> counters(plan.pixelCount() * plan.countersPerPixel(), 0);
-  packDeviceCounters(h, plan, 0, counters);
-  return counters;
-}
-
-SpectralHistogram fromDeviceLayout(const std::vector<uint64_t>& counters, const TracePlan& plan) {
-  SpectralHistogram h(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
-  unpackDeviceCounters(counters, plan, 0, h);
-  return h;
-}
-
-// One histogram chunk (these small sensors fit in one on any device), bound
-// to all kMaxHistogramChunks slots as GpuTracer binds unused slots.
 class PresetTrace {
  public:
-  static constexpr uint32_t kWorkgroup = 64;
-
-  PresetTrace(const TracePlan& plan, const SpectralHistogram& preset)
-      : context_(testing::sharedVulkan()),
-        plan_(plan),
-        constants_(context_, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
-        lights_(deviceBuffer(context_, plan.lights.data(), plan.lights.size())),
-        intervals_(deviceBuffer(context_, plan.intervals.data(), plan.intervals.size())),
-        cmf_(deviceBuffer(context_, plan.cmfTable.data(), plan.cmfTable.size())),
-        records_(context_, 16, {}, MemoryPlacement::DeviceLocal),
-        histogram_(context_, plan.pixelCount() * plan.countersPerPixel() * sizeof(uint64_t), {},
-                   MemoryPlacement::DeviceLocal),
-        trace_(context_, embedded::spv_trace_beams(),
-               {{device::kBindingTraceConstants},
-                {device::kBindingLights},
-                {device::kBindingSpectralIntervals},
-                {device::kBindingHistogram, device::kMaxHistogramChunks},
-                {device::kBindingBeamRecords},
-                {device::kBindingCmfTable}},
-               sizeof(device::TracePush), {kWorkgroup, 0u}) {
-    if (!preset.sameShape(SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour())))
-      throw std::invalid_argument("preset histogram of the wrong shape");
-    const auto counters = toDeviceLayout(preset, plan);
-    histogram_.upload(counters.data(), counters.size() * sizeof(uint64_t));
-    plan_.constants.pixelsPerChunk = uint32_t(plan.pixelCount());
-    constants_.upload(&plan_.constants, sizeof(plan_.constants));
-    trace_.bindBuffer(device::kBindingTraceConstants, 0, constants_);
-    trace_.bindBuffer(device::kBindingLights, 0, lights_);
-    trace_.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
-    trace_.bindBuffer(device::kBindingBeamRecords, 0, records_);
-    trace_.bindBuffer(device::kBindingCmfTable, 0, cmf_);
-    for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c) trace_.bindBuffer(device::kBindingHistogram, c, histogram_);
+  PresetTrace(const TracePlan& plan, const SpectralHistogram& preset) : tracer_(testing::sharedVulkan(), plan) {
+    tracer_.upload(preset);
   }
-
-  // Adds beams [firstBeam, firstBeam + count) to the preset counters.
-  void trace(uint64_t firstBeam, uint32_t count) {
-    const uint32_t groups = (count + kWorkgroup - 1) / kWorkgroup;
-    if (groups > context_.info().maxComputeWorkGroupCount[0]) throw std::invalid_argument("too many beams for 1D");
-    const device::TracePush push{firstBeam, count, groups * kWorkgroup};
-    context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) { trace_.recordDispatch(cb, &push, groups); });
-  }
-
-  SpectralHistogram download() const {
-    std::vector<uint64_t> counters(plan_.pixelCount() * plan_.countersPerPixel());
-    histogram_.download(counters.data(), counters.size() * sizeof(uint64_t));
-    return fromDeviceLayout(counters, plan_);
-  }
-
+  void trace(uint64_t firstBeam, uint32_t count) { tracer_.trace(firstBeam, count); }
+  SpectralHistogram download() const { return tracer_.download(); }
   // The resolve shader over the (preset and traced) counters.
-  std::vector<device::ResolvedPixel> resolve(const ResolveParameters& parameters) const {
-    const device::ResolveConstants rc = resolveConstants(plan_, parameters, uint32_t(plan_.pixelCount()));
-    const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
-    Buffer constants = deviceBuffer(context_, &rc, 1);
-    Buffer weightBuffer = deviceBuffer(context_, weights.data(), weights.size());
-    Buffer output(context_, plan_.pixelCount() * sizeof(device::ResolvedPixel), {}, MemoryPlacement::HostVisible);
-    vk_util::ComputePipeline pipeline(context_, embedded::spv_resolve(),
-                                      {{device::kBindingResolveConstants},
-                                       {device::kBindingBinWeights},
-                                       {device::kBindingResolvedPixels},
-                                       {device::kBindingResolveHistogram, device::kMaxHistogramChunks}},
-                                      sizeof(device::ResolvePush), {kWorkgroup});
-    pipeline.bindBuffer(device::kBindingResolveConstants, 0, constants);
-    pipeline.bindBuffer(device::kBindingBinWeights, 0, weightBuffer);
-    pipeline.bindBuffer(device::kBindingResolvedPixels, 0, output);
-    for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c)
-      pipeline.bindBuffer(device::kBindingResolveHistogram, c, histogram_);
-    const device::ResolvePush push{0u, rc.pixelCount};
-    context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
-      pipeline.recordDispatch(cb, &push, (rc.pixelCount + kWorkgroup - 1) / kWorkgroup);
-    });
-    std::vector<device::ResolvedPixel> pixels(plan_.pixelCount());
-    output.download(pixels.data(), pixels.size() * sizeof(device::ResolvedPixel));
-    return pixels;
-  }
+  RenderImage resolve(const ResolveParameters& parameters) { return tracer_.develop(parameters); }
 
  private:
-  const vk_util::Context& context_;
-  TracePlan plan_;
-  Buffer constants_, lights_, intervals_, cmf_, records_, histogram_;
-  vk_util::ComputePipeline trace_;
+  VulkanTracer tracer_;
 };
 
 // ---------------------------------------------------------------------------
@@ -180,7 +82,7 @@ Scene fourLaserScene() {
 
 // The plan's shape, all zero.
 SpectralHistogram emptyHistogram(const TracePlan& plan) {
-  return SpectralHistogram(plan.pixelsX, plan.pixelsY, plan.bins, plan.exactColour());
+  return SpectralHistogram(plan.film.pixelsX, plan.film.pixelsY, plan.film.bins, plan.film.exactColour);
 }
 
 // Presets: the four lit cells just below 2^31, 2^32 and 2^40 and at
@@ -192,8 +94,8 @@ SpectralHistogram presetHistogram(const TracePlan& plan, const SpectralHistogram
   const uint64_t countPresets[] = {(uint64_t(1) << 31) - 700, k2To32 - 1000, k2To40 - 1000, UINT64_MAX - k2To40 + 1};
   const uint64_t colourPresets[] = {k2To32 - 12345, (uint64_t(1) << 63) - 999, UINT64_MAX - (uint64_t(1) << 46) + 1};
   size_t lit = 0;
-  for (uint32_t pixel = 0; pixel < plan.pixelCount(); ++pixel)
-    for (uint32_t bin = 0; bin < plan.bins; ++bin)
+  for (uint32_t pixel = 0; pixel < plan.film.pixelCount(); ++pixel)
+    for (uint32_t bin = 0; bin < plan.film.bins; ++bin)
       if (hits.at(pixel, bin) > 0) {
         if (lit >= std::size(countPresets)) throw std::logic_error("the four lasers should light exactly four cells");
         preset.at(pixel, bin) = countPresets[lit];
@@ -204,11 +106,11 @@ SpectralHistogram presetHistogram(const TracePlan& plan, const SpectralHistogram
   if (lit != std::size(countPresets)) throw std::logic_error("the four lasers should light exactly four cells");
   const uint64_t idle[] = {0xFFFFFFFFull, k2To32, uint64_t(1) << 63, UINT64_MAX, 0x0123456789ABCDEFull};
   size_t next = 0;
-  for (uint32_t pixel = 1; pixel < plan.pixelCount() && next < std::size(idle); pixel += 2) {
+  for (uint32_t pixel = 1; pixel < plan.film.pixelCount() && next < std::size(idle); pixel += 2) {
     uint64_t pixelHits = 0;
-    for (uint32_t bin = 0; bin < plan.bins; ++bin) pixelHits += hits.at(pixel, bin);
+    for (uint32_t bin = 0; bin < plan.film.bins; ++bin) pixelHits += hits.at(pixel, bin);
     if (pixelHits != 0) continue;
-    preset.at(pixel, next % plan.bins) = idle[next];
+    preset.at(pixel, next % plan.film.bins) = idle[next];
     if (preset.hasExactColour()) preset.colourSums[pixel * 3 + next % 3] = idle[next];
     ++next;
   }
@@ -265,8 +167,8 @@ TEST(CountsNumerics, DeviceCountersStayExactPast2To32) {
   device.trace(kFirst + kBeams, kBeams);
   const SpectralHistogram result = device.download();
   expectExactSum(result, preset, hits, "device");
-  for (uint32_t p = 0; p < plan.pixelCount(); ++p)
-    for (uint32_t b = 0; b < plan.bins; ++b)
+  for (uint32_t p = 0; p < plan.film.pixelCount(); ++p)
+    for (uint32_t b = 0; b < plan.film.bins; ++b)
       if (hits.at(p, b))
         std::printf("device: pixel %u bin %u: %llu + %llu hits = %llu\n", p, b, (unsigned long long)preset.at(p, b),
                     (unsigned long long)hits.at(p, b), (unsigned long long)result.at(p, b));
@@ -276,13 +178,13 @@ TEST(CountsNumerics, DeviceCountersStayExactPast2To32) {
   const ResolveParameters parameters = resolveParametersFor(scene, plan, uint64_t(1) << 50);
   const auto pixels = device.resolve(parameters);
   const RenderImage exact = resolveOnCpu(result, parameters);
-  for (uint32_t p = 0; p < plan.pixelCount(); ++p) {
+  for (uint32_t p = 0; p < plan.film.pixelCount(); ++p) {
     uint64_t total = 0;
-    for (uint32_t b = 0; b < plan.bins; ++b) total += result.at(p, b);  // no pixel's total passes 2^64
+    for (uint32_t b = 0; b < plan.film.bins; ++b) total += result.at(p, b);  // no pixel's total passes 2^64
     const double expected = double(total) * double(float(parameters.irradiancePerCount));
-    EXPECT_NEAR(pixels[p].irradiance, expected, 4e-7 * std::abs(expected)) << "resolve, pixel " << p;
+    EXPECT_NEAR(pixels.irradiance[p], expected, 4e-7 * std::abs(expected)) << "resolve, pixel " << p;
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(pixels[p].xyz[k], exact.xyz[p * 3 + k], 4e-7 * std::abs(exact.xyz[p * 3 + k]))
+      EXPECT_NEAR(pixels.xyz[p * 3 + k], exact.xyz[p * 3 + k], 4e-7 * std::abs(exact.xyz[p * 3 + k]))
           << "resolve, pixel " << p << " XYZ[" << k << "]";
   }
 }
@@ -307,31 +209,19 @@ TEST(CountsNumerics, CpuReferenceCountersStayExactPast2To32) {
   EXPECT_EQ(merged.colourSums, histogram.colourSums);
 }
 
-// Enabled automatically once GpuTracer can preset its counters, e.g.
-//   void GpuTracer::uploadHistogram(const SpectralHistogram&);
-template <typename Tracer>
-concept CanPresetHistogram = requires(Tracer& tracer, const SpectralHistogram& h) { tracer.uploadHistogram(h); };
-
-template <typename Tracer>
-void gpuTracerPresetTest() {
-  if constexpr (CanPresetHistogram<Tracer>) {
-    const Scene scene = fourLaserScene();
-    const TracePlan plan = buildTracePlan(scene, 33);
-    constexpr uint64_t kFirst = 5, kBeams = 200'000;
-    SpectralHistogram hits;
-    traceOnCpu(plan, kFirst, kBeams, hits);
-    const SpectralHistogram preset = presetHistogram(plan, hits);
-    Tracer gpu(testing::sharedVulkan(), plan);
-    gpu.uploadHistogram(preset);
-    gpu.trace(kFirst, kBeams);
-    expectExactSum(gpu.downloadHistogram(), preset, hits, "GpuTracer");
-  } else {
-    GTEST_SKIP() << "GpuTracer has no uploadHistogram(const SpectralHistogram&) to preset its counters; "
-                    "DeviceCountersStayExactPast2To32 runs the same trace shader through vk_util";
-  }
+// Presetting through Tracer::upload, then tracing on the Vulkan tracer.
+TEST(CountsNumerics, GpuTracerCountersStayExactPast2To32) {
+  const Scene scene = fourLaserScene();
+  const TracePlan plan = buildTracePlan(scene, 33);
+  constexpr uint64_t kFirst = 5, kBeams = 200'000;
+  SpectralHistogram hits;
+  traceOnCpu(plan, kFirst, kBeams, hits);
+  const SpectralHistogram preset = presetHistogram(plan, hits);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
+  gpu.upload(preset);
+  gpu.trace(kFirst, kBeams);
+  expectExactSum(gpu.download(), preset, hits, "VulkanTracer");
 }
-
-TEST(CountsNumerics, GpuTracerCountersStayExactPast2To32) { gpuTracerPresetTest<GpuTracer>(); }
 
 // ---------------------------------------------------------------------------
 // Beam indices past 2^32
@@ -372,16 +262,16 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
   constexpr uint32_t kCount = 1'000'000;
   constexpr uint64_t kSeed = 41;
   const TracePlan plan = buildTracePlan(scene, kSeed);
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   const auto base = gpu.traceRecorded(0, kCount);
 
   // Chance agreement of two independent beams: sum over cells of p^2,
   // estimated from the base records (unbiased: n (n - 1) / (N (N - 1))).
-  std::vector<uint32_t> perCell(size_t(plan.pixelCount() * plan.bins), 0);
+  std::vector<uint32_t> perCell(size_t(plan.film.pixelCount() * plan.film.bins), 0);
   uint64_t hits = 0;
   for (const auto& r : base)
     if (r.pixel != device::kBeamMissed) {
-      ++perCell[size_t(r.pixel) * plan.bins + r.bin];
+      ++perCell[size_t(r.pixel) * plan.film.bins + r.bin];
       ++hits;
     }
   double sumP2 = 0.0;
@@ -402,7 +292,7 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
                           {"seed + 2^32", 0, kSeed + k2To32}};
   for (const Shift& s : shifts) {
     const TracePlan shiftedPlan = buildTracePlan(scene, s.seed);
-    GpuTracer shiftedGpu(testing::sharedVulkan(), shiftedPlan);
+    VulkanTracer shiftedGpu(testing::sharedVulkan(), shiftedPlan);
     const auto shifted = shiftedGpu.traceRecorded(s.firstBeam, kCount);
     device::BeamKernel cpu(shiftedPlan.constants, shiftedPlan.lights, shiftedPlan.intervals);
     uint64_t same = 0, cpuDiffers = 0;
@@ -478,19 +368,19 @@ TEST(CountsNumerics, RendersAtBeamIndicesNear2To32And2To40) {
                           {"beams straddling 2^40", k2To40 - kBeams / 2},
                           {"beams from 2^40 + 2^32", k2To40 + k2To32},
                           {"the last beams below 2^64", UINT64_MAX - kBeams + 1}};
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   for (const Start& s : starts) {
-    gpu.clearHistogram();
+    gpu.clear();
     gpu.trace(s.firstBeam, kBeams);
-    const SpectralHistogram fromGpu = gpu.downloadHistogram();
+    const SpectralHistogram fromGpu = gpu.download();
     expectPointLightCounts(fromGpu, scene, kBeams, std::string(s.name) + " (GPU)");
     // The CPU reference draws the same beams (a quarter of them, for time).
     SpectralHistogram cpuPart;
     traceOnCpu(plan, s.firstBeam, kBeams / 4, cpuPart);
     expectPointLightCounts(cpuPart, scene, kBeams / 4, std::string(s.name) + " (CPU)");
-    gpu.clearHistogram();
+    gpu.clear();
     gpu.trace(s.firstBeam, kBeams / 4);
-    const SpectralHistogram gpuPart = gpu.downloadHistogram();
+    const SpectralHistogram gpuPart = gpu.download();
     uint64_t moved = 0;
     for (size_t i = 0; i < cpuPart.counts.size(); ++i)
       moved += cpuPart.counts[i] > gpuPart.counts[i] ? cpuPart.counts[i] - gpuPart.counts[i] : 0;

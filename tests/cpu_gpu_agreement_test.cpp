@@ -5,10 +5,10 @@
 
 #include <cstdio>
 
-#include "cpu/beam_kernel.h"
-#include "cpu/reference_tracer.h"
+#include "kernel/beam_kernel.h"
+#include "support/cpu_trace.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
 
@@ -73,9 +73,9 @@ TEST(CpuGpuAgreement, BeamIndicesNear2To32And2To40) {
 TEST(CpuGpuAgreement, HistogramsOfARenderAgree) {
   const Scene scene = mixedScene(false);
   const TracePlan plan = buildTracePlan(scene, 777);
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, 3'000'000);
-  const SpectralHistogram fromGpu = gpu.downloadHistogram();
+  const SpectralHistogram fromGpu = gpu.download();
   SpectralHistogram fromCpu;
   traceOnCpu(plan, 0, 3'000'000, fromCpu);
   uint64_t absDiff = 0;
@@ -105,10 +105,10 @@ TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {
   Scene scene = testing::bareSensorScene(0.1, 0.1, 600, 600, 64);
   scene.lights = {pointLight({0.0, 0.0, 0.05}, 1.0, *cieIlluminant("D65"))};
   const TracePlan plan = buildTracePlan(scene, 3);
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   ASSERT_EQ(gpu.split().chunkCount, 2u);
   gpu.trace(0, 2'000'000);
-  const SpectralHistogram fromGpu = gpu.downloadHistogram();
+  const SpectralHistogram fromGpu = gpu.download();
   SpectralHistogram fromCpu;
   traceOnCpu(plan, 0, 2'000'000, fromCpu);
   uint64_t differing = 0;

@@ -24,11 +24,11 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_frame.h"
-#include "cpu/beam_kernel.h"
-#include "cpu/reference_tracer.h"
-#include "cpu/resolve_cpu.h"
+#include "kernel/beam_kernel.h"
+#include "support/cpu_trace.h"
+#include "film/develop.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
@@ -96,11 +96,11 @@ struct GpuRun {
 };
 
 GpuRun traceOnGpu(const Scene& scene, const TracePlan& plan, uint64_t firstBeam, uint64_t beams) {
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(firstBeam, beams);
   GpuRun run;
-  run.histogram = gpu.downloadHistogram();
-  run.image = gpu.resolve(resolveParametersFor(scene, plan, beams));
+  run.histogram = gpu.download();
+  run.image = gpu.develop(resolveParametersFor(scene, plan, beams));
   return run;
 }
 
@@ -129,7 +129,7 @@ struct MatchStats {
 // tracedPowerW / sampledPowerW, for plans whose beams all have weight ratio
 // 1 (counts are then plain hits: point, spot and laser lights).
 double aimGain(const TracePlan& plan) {
-  EXPECT_FALSE(plan.weighted()) << "these checks count hits; weighted plans need their weights";
+  EXPECT_FALSE(plan.film.weighted()) << "these checks count hits; weighted plans need their weights";
   return plan.tracedPowerW / plan.sampledPowerW;
 }
 

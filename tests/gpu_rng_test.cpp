@@ -2,7 +2,7 @@
 // identical integers for the first 10^6 draws of several streams.
 #include <gtest/gtest.h>
 
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "rng/philox.h"
 #include "support/test_scenes.h"
 

@@ -24,8 +24,8 @@ std::string sceneFile(const std::string& name) {
   return std::string(SPECTRACE_SOURCE_DIR) + "/scenes/reference/" + name + ".json";
 }
 
-BenchDevice vulkanDevice() {
-  const auto devices = benchDevices("gpu");
+DeviceSpec vulkanDevice() {
+  const auto devices = listDevices("gpu");
   if (devices.empty()) throw std::runtime_error("no Vulkan device");
   return devices.front();
 }

@@ -5,8 +5,8 @@
 
 #include <atomic>
 
-#include "cpu/reference_tracer.h"
-#include "render/gpu_tracer.h"
+#include "support/cpu_trace.h"
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/test_scenes.h"
 
@@ -40,7 +40,7 @@ TEST(Render, AutoPicksTheVulkanDeviceWhenThereIsOne) {
   std::string logged;
   options.log = [&](const std::string& line) { logged += line + "\n"; };
   const RenderResult result = render(smallScene(), options);
-  EXPECT_EQ(result.deviceKind, "gpu");  // lavapipe counts: it is a Vulkan device
+  EXPECT_EQ(result.deviceKind, DeviceKind::Vulkan);  // lavapipe counts: it is a Vulkan device
   EXPECT_NE(logged.find(result.deviceName), std::string::npos) << "auto must say which device it picked";
 }
 
@@ -145,7 +145,7 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
   panel.radiusM = 0.02;
   aimedPanel.lights = {panel};  // aimed, with fractional weights
   scenes.push_back(aimedPanel);
-  ASSERT_TRUE(buildTracePlan(aimedPanel, 1).weighted());
+  ASSERT_TRUE(buildTracePlan(aimedPanel, 1).film.weighted());
   for (bool exactColour : {true, false}) {
     for (const Scene& scene : scenes) {
       RenderOptions options;
@@ -161,9 +161,9 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
       // Each specialisation alone (the benchmark measures them one by one),
       // on the shared device: a render would open a device each time.
       for (uint32_t feature = 1; feature < kSpecialiseAll; feature <<= 1) {
-        GpuTracer alone(testing::sharedVulkan(), general.plan, 64, feature);
+        VulkanTracer alone(testing::sharedVulkan(), general.plan, 64, feature);
         alone.trace(0, options.beams);
-        expectSameHistogram(alone.downloadHistogram(), general.histogram,
+        expectSameHistogram(alone.download(), general.histogram,
                             ("feature " + std::to_string(feature) + " alone vs general").c_str());
       }
     }
@@ -194,7 +194,7 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
     disk.radiusM = 0.005;
     scene.lights = {disk};
     const TracePlan trimmed = buildTracePlan(scene, 1);
-    EXPECT_LE(trimmed.storedBins(), c.maxStoredBins) << c.name;
+    EXPECT_LE(trimmed.film.storedBins, c.maxStoredBins) << c.name;
     for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
       RenderOptions options;
       options.beams = 1'000'000;
@@ -202,7 +202,7 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
       const RenderResult a = render(scene, options);
       options.plan.trimSpectrum = false;
       const RenderResult b = render(scene, options);
-      EXPECT_EQ(b.plan.storedBins(), 94u);
+      EXPECT_EQ(b.plan.film.storedBins, 94u);
       EXPECT_GT(a.histogram.total(), 100'000u);
       expectSameHistogram(a.histogram, b.histogram, c.name);
       expectSameImage(a.image, b.image, c.name);
@@ -249,16 +249,16 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
   }
   for (const auto& c : cases) {
     const TracePlan plan = buildTracePlan(c.scene, 1);
-    std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.storedPixelCount(),
-                (unsigned long long)plan.pixelCount());
-    EXPECT_EQ(plan.storedPixelCount() < plan.pixelCount(), c.smaller) << c.name;
+    std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.film.storedPixelCount(),
+                (unsigned long long)plan.film.pixelCount());
+    EXPECT_EQ(plan.film.storedPixelCount() < plan.film.pixelCount(), c.smaller) << c.name;
     RenderOptions options;
     options.beams = 1'000'000;
     options.device = DeviceChoice::Gpu;
     const RenderResult a = render(c.scene, options);
     options.plan.trimPixels = false;
     const RenderResult b = render(c.scene, options);
-    EXPECT_EQ(b.plan.storedPixelCount(), b.plan.pixelCount());
+    EXPECT_EQ(b.plan.film.storedPixelCount(), b.plan.film.pixelCount());
     EXPECT_GT(a.histogram.countedBeams, 10'000u) << c.name;
     expectSameHistogram(a.histogram, b.histogram, c.name);
     expectSameImage(a.image, b.image, c.name);

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cpu/resolve_cpu.h"
+#include "film/develop.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/render_comparison.h"
 #include "support/test_scenes.h"
@@ -62,9 +62,9 @@ TEST(SkipUnreachableLights, AreNeverSampledAndSayWhy) {
 }
 
 testing::PixelEstimates renderPlan(const TracePlan& plan, uint64_t beams) {
-  GpuTracer gpu(testing::sharedVulkan(), plan);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, beams);
-  return testing::pixelEstimates(gpu.downloadHistogram(), plan, beams);
+  return testing::pixelEstimates(gpu.download(), plan, beams);
 }
 
 void expectSameExpectation(bool pinhole, int minCells) {

@@ -9,14 +9,11 @@
 #include <stdexcept>
 
 #include "colour/colour.h"
-#include "cpu/reference_tracer.h"
 #include "lights/trace_plan.h"
 #include "reference/exact_solution.h"
-#include "render/gpu_tracer.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "scene/scene_builders.h"
-#include "vulkan/context.h"
 
 namespace spectrace {
 namespace {
@@ -36,90 +33,45 @@ ReferenceImage toReference(const ExactImage& exact, bool exactColour) {
   return ref;
 }
 
-// One device's tracer for one scene, reused across beam counts so that
-// only tracing and resolving are timed.
-struct DeviceRun {
-  const BenchDevice& device;
-  const vk_util::Context* vulkan;
-  const TracePlan& plan;
-  std::unique_ptr<GpuTracer> gpu;
+// Renders beams [0, beams) of `plan` on `tracer` (emptied first): the row
+// gets the wall time of trace + develop and the device times; returns the
+// image and the film.
+std::pair<RenderImage, SpectralHistogram> timedRender(Tracer& tracer, const Scene& scene, const TracePlan& plan,
+                                                      uint64_t beams, SweepRow& row) {
+  const ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
+  tracer.clear();
+  const double traceBefore = tracer.traceDeviceSeconds(), developBefore = tracer.developDeviceSeconds();
+  const auto start = Clock::now();
+  tracer.trace(0, beams);
+  RenderImage image = tracer.develop(parameters);
+  row.wallSeconds = since(start);
+  row.traceDeviceSeconds = tracer.traceDeviceSeconds() - traceBefore;
+  row.resolveDeviceSeconds = tracer.developDeviceSeconds() - developBefore;
+  return {std::move(image), tracer.download()};
+}
 
-  DeviceRun(const BenchDevice& d, const vk_util::Context* context, const TracePlan& p, const Scene& scene)
-      : device(d), vulkan(context), plan(p) {
-    if (vulkan) {
-      // The first dispatch of each pipeline compiles it: keep that out of
-      // the timings.
-      gpu = std::make_unique<GpuTracer>(*vulkan, plan);
-      gpu->trace(0, 4096);
-      gpu->resolve(resolveParametersFor(scene, plan, 4096));
-    }
-  }
-
-  // Renders beams [0, beams); fills the row's times and returns the image
-  // and histogram.
-  std::pair<RenderImage, SpectralHistogram> render(const Scene& scene, uint64_t beams, SweepRow& row) {
-    const ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
-    if (gpu) {
-      gpu->clearHistogram();
-      const auto start = Clock::now();
-      row.traceDeviceSeconds = gpu->trace(0, beams);
-      RenderImage image = gpu->resolve(parameters, &row.resolveDeviceSeconds);
-      row.wallSeconds = since(start);
-      return {std::move(image), gpu->downloadHistogram()};
-    }
-    SpectralHistogram histogram;
-    const auto start = Clock::now();
-    traceOnCpu(plan, 0, beams, histogram);
-    RenderImage image = resolveOnCpu(histogram, parameters);
-    row.wallSeconds = since(start);
-    return {std::move(image), std::move(histogram)};
-  }
-};
-
-std::unique_ptr<vk_util::Context> openDevice(const BenchDevice& device) {
-  if (device.kind != "gpu") return nullptr;
-  return vk_util::Context::create(uint32_t(device.vulkanIndex));
+// A tracer for one scene, warmed up: the first dispatch of each pipeline
+// compiles it, which stays out of the timings.
+std::unique_ptr<Tracer> warmTracer(const Device& device, const Scene& scene, const TracePlan& plan) {
+  auto tracer = device.makeTracer(plan);
+  tracer->trace(0, 4096);
+  tracer->develop(resolveParametersFor(scene, plan, 4096));
+  return tracer;
 }
 
 }  // namespace
 
-std::vector<BenchDevice> benchDevices(const std::string& filter) {
-  std::vector<std::string> wanted;
-  std::stringstream list(filter);
-  for (std::string item; std::getline(list, item, ',');)
-    if (!item.empty()) wanted.push_back(item);
-  auto accepted = [&](const BenchDevice& d) {
-    if (wanted.empty()) return true;
-    for (const auto& w : wanted)
-      if (w == d.kind || w == d.name) return true;
-    return false;
-  };
-  std::vector<BenchDevice> devices;
-  try {
-    for (const auto& info : vk_util::enumerateDevices()) {
-      if (!info.missingFeatures().empty()) continue;
-      BenchDevice d{"gpu", info.name, int(info.index)};
-      if (accepted(d)) devices.push_back(d);
-    }
-  } catch (const vk_util::VulkanError&) {
-    // No Vulkan: the CPU reference alone.
-  }
-  BenchDevice cpu{"cpu", fmt::format("CPU reference, {} threads", std::max(1u, std::thread::hardware_concurrency())), -1};
-  if (accepted(cpu)) devices.push_back(cpu);
-  return devices;
-}
-
-std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, const SweepOptions& options) {
+std::vector<SweepRow> runErrorSweep(const std::vector<DeviceSpec>& devices, const SweepOptions& options) {
   std::vector<SweepRow> rows;
   for (const auto& device : devices) {
-    const auto vulkan = openDevice(device);
+    const auto opened = Device::open(device);
     for (const auto& path : options.scenes) {
       const Scene scene = loadScene(path);
       const auto exact = exactSolution(scene);
       if (!exact) throw std::runtime_error(fmt::format("{}: no exact solution is known for this scene", path));
       const ReferenceImage reference = toReference(*exact, options.plan.exactColour);
       const TracePlan plan = buildTracePlan(scene, options.seed, options.plan);
-      DeviceRun run(device, vulkan.get(), plan, scene);
+      const auto tracer = warmTracer(*opened, scene, plan);
       for (uint64_t beams : options.beamCounts) {
         SweepRow row;
         row.scene = std::filesystem::path(path).stem().string();
@@ -129,7 +81,7 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
         row.exactColour = options.plan.exactColour;
         row.aimed = options.plan.aim;
         for (const auto& light : plan.lights) row.aimedLights += light.aimed != 0;
-        auto [image, histogram] = run.render(scene, beams, row);
+        auto [image, histogram] = timedRender(*tracer, scene, plan, beams, row);
         row.hits = histogram.countedBeams;
         row.metrics = computeErrorMetrics(image, reference, estimatedRelativeVariance(histogram, beams));
         row.fom = figureOfMerit(row.metrics.relMse, row.wallSeconds);
@@ -141,9 +93,9 @@ std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, con
   return rows;
 }
 
-std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t beams,
+std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t beams,
                                             const std::function<void(const ColourBinRow&)>& onRow) {
-  const auto vulkan = openDevice(device);
+  const auto opened = Device::open(device);
   const Observer& observer = cie1931Observer();
   struct NamedSpd {
     std::string name;
@@ -162,9 +114,9 @@ std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t 
       laser.radiusM = 0.0075;
       scene.lights = {laser};
       const TracePlan plan = buildTracePlan(scene, 5);
-      DeviceRun run(device, vulkan.get(), plan, scene);
+      const auto tracer = warmTracer(*opened, scene, plan);
       SweepRow timing;
-      auto [image, histogram] = run.render(scene, beams, timing);
+      auto [image, histogram] = timedRender(*tracer, scene, plan, beams, timing);
 
       const Spd inRange = named.spd.clipped(360.0, 830.0);
       const auto exactXyz = spdToXyz(inRange, observer);
@@ -234,7 +186,7 @@ void writeSweepCsv(const std::filesystem::path& file, const std::vector<SweepRow
   for (const auto& r : rows) {
     const auto& m = r.metrics;
     out << fmt::format("{},{},\"{}\",{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
-                       r.scene, r.device, r.deviceName, int(r.aimed), r.beams, r.hits, r.wallSeconds, r.traceDeviceSeconds,
+                       r.scene, deviceKindName(r.device), r.deviceName, int(r.aimed), r.beams, r.hits, r.wallSeconds, r.traceDeviceSeconds,
                        r.resolveDeviceSeconds, double(r.beams) / r.wallSeconds, m.relRmse, m.relMse, m.bias,
                        m.deltaE2000Mean, m.deltaE2000P99, m.meanChromaticityError, m.estimatedRelRmse, m.honesty, r.fom);
   }

@@ -8,24 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "backend/device.h"
 #include "lights/trace_plan.h"
 #include "metrics/error_metrics.h"
 
 namespace spectrace {
 
-struct BenchDevice {
-  std::string kind;   // "gpu" or "cpu"
-  std::string name;   // device name
-  int vulkanIndex = -1;
-};
-
-// The devices a benchmark runs on: every usable Vulkan device, then the CPU
-// reference (filtered by a comma-separated list of "gpu", "cpu", or device
-// names; empty = all).
-std::vector<BenchDevice> benchDevices(const std::string& filter);
-
 struct SweepRow {
-  std::string scene, device, deviceName;
+  std::string scene;
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
   uint64_t beams = 0, hits = 0;       // beams traced, beams counted
   double wallSeconds = 0.0;           // trace + resolve, host clock (no setup)
   double traceDeviceSeconds = 0.0;    // timestamps (GPU only)
@@ -45,7 +37,7 @@ struct SweepOptions {
   std::function<void(const SweepRow&)> onRow;
 };
 
-std::vector<SweepRow> runErrorSweep(const std::vector<BenchDevice>& devices, const SweepOptions& options);
+std::vector<SweepRow> runErrorSweep(const std::vector<DeviceSpec>& devices, const SweepOptions& options);
 
 // Colour error from binning: uniform irradiance of one SPD at several bin
 // counts, colour from bins vs from per-beam CMFs, against the exact colour.
@@ -61,7 +53,7 @@ struct ColourBinRow {
   // this is noise, not bias.
   double chromaticitySigma = 0.0;
 };
-std::vector<ColourBinRow> runColourBinStudy(const BenchDevice& device, uint64_t beams,
+std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t beams,
                                             const std::function<void(const ColourBinRow&)>& onRow = {});
 
 // Writes `rows` as CSV.

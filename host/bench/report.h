@@ -10,7 +10,8 @@
 namespace spectrace {
 
 struct ThroughputRow {
-  std::string device, deviceName;
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
   bool exactColour = true;
   uint64_t beams = 0, hits = 0;
   double wallSeconds = 0.0, traceDeviceSeconds = 0.0;
@@ -50,7 +51,7 @@ struct AimRow {
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
-  std::vector<BenchDevice> devices;
+  std::vector<DeviceSpec> devices;
   std::vector<ThroughputRow> throughput;
   std::vector<SpecialisationRow> specialisation;
   std::vector<TrimRow> trim;

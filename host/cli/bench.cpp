@@ -52,29 +52,29 @@ std::string machineDescription() {
 // Renders `scene` for timing: a small render with the same options first, so
 // pipeline compilation at the first dispatch stays out of every measured
 // variant alike.
-RenderResult timedRender(const Scene& scene, DeviceChoice device, uint64_t beams, const std::atomic<bool>& cancel,
+RenderResult timedRender(const Scene& scene, const Device& device, uint64_t beams, const std::atomic<bool>& cancel,
                          const std::function<void(RenderOptions&)>& configure = {}) {
   RenderOptions options;
-  options.device = device;
   options.beams = beams;
   options.cancel = &cancel;
   if (configure) configure(options);
   RenderOptions warm = options;
   warm.beams = uint64_t(1) << 16;
-  render(scene, warm);
-  return render(scene, options);
+  render(scene, warm, device);
+  return render(scene, options, device);
 }
 
-std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std::vector<BenchDevice>& devices,
+std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std::vector<DeviceSpec>& devices,
                                          const std::atomic<bool>& cancel) {
   const Scene scene = throughputScene();
   std::vector<ThroughputRow> rows;
   fmt::print("Throughput: D65 disk light, bare 512x512 sensor, 64 bins, {} beams per device\n", command.beams);
   fmt::print("{:<44} {:<6} {:>9} {:>10} {:>15} {:>9}\n", "device", "colour", "wall s", "Mbeam/s", "Mbeam/s device", "hit rate");
   for (const auto& device : devices) {
+    const auto opened = Device::open(device);
     for (bool exactColour : {true, false}) {
       const RenderResult result =
-          timedRender(scene, device.kind == "gpu" ? DeviceChoice::Gpu : DeviceChoice::Cpu, command.beams, cancel,
+          timedRender(scene, *opened, command.beams, cancel,
                       [&](RenderOptions& o) {
                         o.cpuThreads = command.threads;
                         o.plan.exactColour = exactColour;
@@ -90,7 +90,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
   }
   for (const auto& a : rows)
     for (const auto& b : rows)
-      if (a.device == "gpu" && b.device == "cpu" && a.exactColour == b.exactColour)
+      if (a.device == DeviceKind::Vulkan && b.device == DeviceKind::Cpu && a.exactColour == b.exactColour)
         fmt::print("ratio {} : {} ({} colour) = {:.2f}\n", a.deviceName, b.deviceName, a.exactColour ? "exact" : "binned",
                    (double(a.beams) / a.wallSeconds) / (double(b.beams) / b.wallSeconds));
   return rows;
@@ -116,7 +116,7 @@ std::vector<BestTimes> interleavedBest(size_t variants, int rounds, const std::f
 constexpr int kTimingRounds = 3;
 
 // General against specialised trace pipelines, device time, same run.
-std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>& devices,
+std::vector<SpecialisationRow> runSpecialisation(const std::vector<DeviceSpec>& devices,
                                                  const std::filesystem::path& scenesDir, const std::atomic<bool>& cancel) {
   std::vector<std::pair<std::string, Scene>> scenes = {{"throughput scene", throughputScene()}};
   for (const char* name : {"default", "reference/point_on_axis", "reference/disk_on_axis", "reference/uniform_d65",
@@ -127,7 +127,8 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
   fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}   gain of each alone (light types, choice, pinhole, colour, aim)\n",
              "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
   for (const auto& device : devices) {
-    if (device.kind != "gpu") continue;
+    if (device.kind != DeviceKind::Vulkan) continue;
+    const auto opened = Device::open(device);
     for (const auto& [name, scene] : scenes) {
       SpecialisationRow row{name, device.name, uint64_t(1) << 23, 0.0, 0.0, {}};
       // Variants: general, each feature alone, all.
@@ -135,7 +136,7 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
       for (uint32_t feature = 1; feature < kSpecialiseAll; feature <<= 1) variants.push_back(feature);
       variants.push_back(kSpecialiseAll);
       const auto best = interleavedBest(variants.size(), kTimingRounds, [&](size_t v) {
-        return timedRender(scene, DeviceChoice::Gpu, row.beams, cancel,
+        return timedRender(scene, *opened, row.beams, cancel,
                            [&](RenderOptions& o) { o.specialisedFeatures = variants[v]; });
       });
       row.generalSeconds = best.front().traceSeconds;
@@ -152,14 +153,15 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<BenchDevice>&
 }
 
 // Full against trimmed spectra: memory, trace and resolve time, same run.
-std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std::filesystem::path& scenesDir,
+std::vector<TrimRow> runTrim(const std::vector<DeviceSpec>& devices, const std::filesystem::path& scenesDir,
                              const std::atomic<bool>& cancel) {
   std::vector<TrimRow> rows;
   fmt::print("\nTrimmed spectra and sensor (device histogram, device times)\n");
   fmt::print("{:<28} {:>10} {:>16} {:>16} {:>18} {:>18}\n", "scene", "bins", "pixels", "histogram MiB", "trace s",
              "resolve ms");
   for (const auto& device : devices) {
-    if (device.kind != "gpu") continue;
+    if (device.kind != DeviceKind::Vulkan) continue;
+    const auto opened = Device::open(device);
     for (const char* name : {"reference/laser_532", "reference/uniform_f11", "reference/uniform_led_b3",
                              "reference/pinhole_rect", "stress/laser_one_pixel", "default"}) {
       const Scene scene = loadScene(scenesDir / (std::string(name) + ".json"));
@@ -169,13 +171,13 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
       row.beams = uint64_t(1) << 23;
       const auto best = interleavedBest(2, kTimingRounds, [&](size_t v) {
         const bool trim = v == 1;
-        RenderResult result = timedRender(scene, DeviceChoice::Gpu, row.beams, cancel, [&](RenderOptions& o) {
+        RenderResult result = timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
           o.plan.trimSpectrum = trim;
           o.plan.trimPixels = trim;
         });
-        const double mib = double(result.plan.storedPixelCount() * result.plan.countersPerPixel() * 8) / (1 << 20);
-        (trim ? row.storedBins : row.fullBins) = result.plan.storedBins();
-        (trim ? row.storedPixels : row.fullPixels) = result.plan.storedPixelCount();
+        const double mib = double(result.plan.film.storedPixelCount() * result.plan.film.countersPerPixel() * 8) / (1 << 20);
+        (trim ? row.storedBins : row.fullBins) = result.plan.film.storedBins;
+        (trim ? row.storedPixels : row.fullPixels) = result.plan.film.storedPixelCount();
         (trim ? row.trimmedMiB : row.fullMiB) = mib;
         return result;
       });
@@ -194,7 +196,7 @@ std::vector<TrimRow> runTrim(const std::vector<BenchDevice>& devices, const std:
 
 // Aimed against analog sampling on reference scenes (exact answers), each
 // at a beam count where its error is well inside the N^-1/2 regime.
-std::vector<AimRow> runAimStudy(const std::vector<BenchDevice>& devices, const std::filesystem::path& dir) {
+std::vector<AimRow> runAimStudy(const std::vector<DeviceSpec>& devices, const std::filesystem::path& dir) {
   struct Case {
     const char* scene;
     uint64_t aimedBeams, analogBeams;
@@ -218,7 +220,7 @@ std::vector<AimRow> runAimStudy(const std::vector<BenchDevice>& devices, const s
       }
       for (const SweepRow* r : {&row.aimed, &row.analog})
         fmt::print("{:<15} {:<6} {:<7} {:>11} {:>8.3g}% {:>12.2f} {:>16.3g} {:>10.3g} {:>10.4g} {:>8}\n", r->scene,
-                   r->device, r->aimed ? "aimed" : "analog", r->beams, 100.0 * double(r->hits) / double(r->beams),
+                   deviceKindName(r->device), r->aimed ? "aimed" : "analog", r->beams, 100.0 * double(r->hits) / double(r->beams),
                    double(r->beams) / r->wallSeconds * 1e-6, double(r->hits) / r->wallSeconds * 1e-6,
                    r->metrics.relRmse, r->fom, r->aimed ? fmt::format("{:.3g}", row.fomGain()) : "");
       rows.push_back(row);
@@ -243,7 +245,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   BenchReport report;
   report.date = utcNow();
   report.machine = machineDescription();
-  report.devices = benchDevices(command.devices);
+  report.devices = listDevices(command.devices);
   if (report.devices.empty()) throw std::runtime_error("bench: no device matches --device " + command.devices);
   if (command.throughput) report.throughput = runThroughput(command, report.devices, cancel);
 
@@ -267,7 +269,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     fmt::print("{:<16} {:<6} {:>11} {:>9} {:>10} {:>10} {:>10} {:>8} {:>10}\n", "scene", "device", "beams", "wall s",
                "relRMSE", "estimated", "bias", "ΔE mean", "FOM");
     options.onRow = [](const SweepRow& r) {
-      fmt::print("{:<16} {:<6} {:>11} {:>9.4f} {:>10.3g} {:>10.3g} {:>+10.2e} {:>8.3f} {:>10.4g}\n", r.scene, r.device,
+      fmt::print("{:<16} {:<6} {:>11} {:>9.4f} {:>10.3g} {:>10.3g} {:>+10.2e} {:>8.3f} {:>10.4g}\n", r.scene, deviceKindName(r.device),
                  r.beams, r.wallSeconds, r.metrics.relRmse, r.metrics.estimatedRelRmse, r.metrics.bias,
                  r.metrics.deltaE2000Mean, r.fom);
     };

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_frame.h"
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 #include "colour/colour.h"
 #include "spectrum/wavelength_sampler.h"
 
@@ -212,7 +212,7 @@ LightReach lightReach(const Light& light, const glm::dvec3& position, const glm:
   return reach;
 }
 
-// Narrows the stored window (c.window*, the whole sensor on entry) to the
+// Narrows the stored window (the whole sensor on entry) to the
 // pixels any counted beam can land on, plus a pixel of margin for float
 // rounding; leaves it whole when that cannot be bounded.
 // - Pinhole at distance D, radius r: a beam from P (height h = P.z - D > 0)
@@ -222,7 +222,7 @@ LightReach lightReach(const Light& light, const glm::dvec3& position, const glm:
 //   (a perspective map keeps segments straight), and 1 + D/h <= 1 + D/h_min.
 // - Bare sensor: only lasers are bounded: the beam's footprint lies within
 //   R / |a.z| of where its axis meets the sensor.
-void narrowPixelWindow(const Camera& camera, const std::vector<LightReach>& lights, device::TraceConstants& c) {
+void narrowPixelWindow(const Camera& camera, const std::vector<LightReach>& lights, PixelWindow& window) {
   const double halfW = 0.5 * camera.sensorWidthM, halfH = 0.5 * camera.sensorHeightM;
   glm::dvec2 lo(INFINITY), hi(-INFINITY);  // sensor-plane bounds of every hit
   for (const LightReach& light : lights) {
@@ -268,10 +268,7 @@ void narrowPixelWindow(const Camera& camera, const std::vector<LightReach>& ligh
   const double maxCol = camera.pixelsX - 1, maxRow = camera.pixelsY - 1;
   const double c0 = std::clamp(std::floor(colLo) - 1.0, 0.0, maxCol), c1 = std::clamp(std::floor(colHi) + 1.0, 0.0, maxCol);
   const double r0 = std::clamp(std::floor(rowLo) - 1.0, 0.0, maxRow), r1 = std::clamp(std::floor(rowHi) + 1.0, 0.0, maxRow);
-  c.windowX0 = uint32_t(c0);
-  c.windowY0 = uint32_t(r0);
-  c.windowWidth = uint32_t(c1 - c0) + 1;
-  c.windowHeight = uint32_t(r1 - r0) + 1;
+  window = {uint32_t(c0), uint32_t(r0), uint32_t(c1 - c0) + 1, uint32_t(r1 - r0) + 1};
 }
 
 std::string sceneName(const Scene& scene) {
@@ -287,14 +284,13 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   const Camera& camera = scene.camera;
   const CameraFrame frame = CameraFrame::fromCamera(camera);
   const AimTarget target = aimTarget(camera);
-  plan.constants.weightUnits = 1;
-
-  plan.pixelsX = uint32_t(camera.pixelsX);
-  plan.pixelsY = uint32_t(camera.pixelsY);
-  plan.bins = uint32_t(range.bins);
-  plan.lambdaMinNm = range.minNm;
-  plan.lambdaMaxNm = range.maxNm;
-  plan.pixelAreaM2 = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
+  plan.film.weightUnits = 1;
+  plan.film.pixelsX = uint32_t(camera.pixelsX);
+  plan.film.pixelsY = uint32_t(camera.pixelsY);
+  plan.film.bins = uint32_t(range.bins);
+  plan.film.lambdaMinNm = range.minNm;
+  plan.film.lambdaMaxNm = range.maxNm;
+  plan.film.pixelAreaM2 = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
 
   std::vector<double> selectWeights;
   std::vector<LightReach> reaches;
@@ -355,7 +351,7 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
       plan.tracedPowerW += summary.tracedPowerW;
       plan.sampledPowerW += summary.tracedPowerW * summary.largestWeight;
       if (record.aimed && (light.type == LightType::Disk || light.type == LightType::Rect))
-        plan.constants.weightUnits = device::kWeightUnitsFractional;
+        plan.film.weightUnits = device::kWeightUnitsFractional;
     }
     if (!summary.traced) summary.tracedPowerW = 0.0;
     plan.summaries.push_back(summary);
@@ -371,9 +367,9 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   device::TraceConstants& c = plan.constants;
   c.sensorHalfSize = glm::vec2(float(0.5 * camera.sensorWidthM), float(0.5 * camera.sensorHeightM));
   c.pixelsPerMetre = glm::vec2(float(camera.pixelsX / camera.sensorWidthM), float(camera.pixelsY / camera.sensorHeightM));
-  c.pixelsX = plan.pixelsX;
-  c.pixelsY = plan.pixelsY;
-  c.bins = plan.bins;
+  c.pixelsX = plan.film.pixelsX;
+  c.pixelsY = plan.film.pixelsY;
+  c.bins = plan.film.bins;
   c.lightCount = uint32_t(plan.lights.size());
   c.lambdaMin = float(range.minNm);
   c.binsPerNm = float(range.bins / (range.maxNm - range.minNm));
@@ -381,10 +377,11 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
     c.apertureDistance = float(camera.pinhole->distanceM);
     c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
   }
-  c.pixelsPerChunk = uint32_t(plan.pixelCount());
-  c.exactColour = options.exactColour ? 1u : 0u;
-  c.totalBins = plan.bins;
-  c.binOffset = 0;
+  c.pixelsPerChunk = uint32_t(plan.film.pixelCount());
+  FilmLayout& film = plan.film;
+  film.exactColour = options.exactColour;
+  film.firstStoredBin = 0;
+  film.storedBins = film.bins;
   const Observer& observer = observerByName(scene.observer);
   for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
     plan.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));
@@ -399,21 +396,29 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
     // operations of the shader (beam_trace.h): an interval's wavelengths run
     // from lambda0 + width * 0 to lambda0 + width * 1, monotonically in t.
     device::BeamKernel kernel(c, plan.lights, plan.intervals);
-    uint32_t first = plan.bins, last = 0;
+    uint32_t first = plan.film.bins, last = 0;
     for (const auto& iv : plan.intervals) {
       const float lowest = iv.lambda0 + iv.width * 0.0f;
       const float highest = iv.lambda0 + iv.width * 1.0f;
-      first = std::min(first, kernel.binOfWavelength(lowest, c.lambdaMin, c.binsPerNm, plan.bins));
-      last = std::max(last, kernel.binOfWavelength(highest, c.lambdaMin, c.binsPerNm, plan.bins));
+      first = std::min(first, kernel.binOfWavelength(lowest, c.lambdaMin, c.binsPerNm, plan.film.bins));
+      last = std::max(last, kernel.binOfWavelength(highest, c.lambdaMin, c.binsPerNm, plan.film.bins));
     }
-    c.binOffset = first;
-    c.bins = last - first + 1;
+    film.firstStoredBin = first;
+    film.storedBins = last - first + 1;
   }
-  c.countersPerPixel = c.bins + (options.exactColour ? 3u : 0u) + (plan.weighted() ? 1u : 0u);
-  c.windowX0 = c.windowY0 = 0;
-  c.windowWidth = plan.pixelsX;
-  c.windowHeight = plan.pixelsY;
-  if (options.trimPixels) narrowPixelWindow(camera, reaches, c);
+  film.window = {0, 0, film.pixelsX, film.pixelsY};
+  if (options.trimPixels) narrowPixelWindow(camera, reaches, film.window);
+  // The kernel's copy of the film's shape.
+  c.exactColour = film.exactColour ? 1u : 0u;
+  c.totalBins = film.bins;
+  c.binOffset = film.firstStoredBin;
+  c.bins = film.storedBins;
+  c.countersPerPixel = film.countersPerPixel();
+  c.weightUnits = film.weightUnits;
+  c.windowX0 = film.window.x0;
+  c.windowY0 = film.window.y0;
+  c.windowWidth = film.window.width;
+  c.windowHeight = film.window.height;
   return plan;
 }
 

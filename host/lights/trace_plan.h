@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cpu/spectral_histogram.h"
+#include "film/film_layout.h"
 #include "device_shared.h"
 #include "scene/scene.h"
 
@@ -26,53 +26,26 @@ struct LightSummary {
 };
 
 struct TracePlan {
+  // Scene-wide kernel constants. Their film fields (window, stored bins,
+  // countersPerPixel) mirror `film`; pixelsPerChunk is the backend's.
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights;
   std::vector<device::SpectralInterval> intervals;
   std::vector<glm::vec3> cmfTable;      // the observer's CMF nodes, for exact colour
+  FilmLayout film;                      // what the device stores, and how
   std::vector<LightSummary> summaries;  // one per scene light, in scene order
   double tracedPowerW = 0.0;            // sum over traced lights
   // Sum over traced lights of power x largest weight: the power a
   // full-weight beam stands for, times the beam count (= tracedPowerW
   // without aiming).
   double sampledPowerW = 0.0;
-  double pixelAreaM2 = 0.0;
-  double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
-  uint32_t pixelsX = 0, pixelsY = 0, bins = 0;  // bins of the full spectrum (host histograms, output)
-  // The bins the device stores: [firstStoredBin, firstStoredBin + storedBins).
-  uint32_t firstStoredBin() const { return constants.binOffset; }
-  uint32_t storedBins() const { return constants.bins; }
 
-  uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
-  // The pixels the device stores: a window of the sensor (TraceConstants).
-  uint64_t storedPixelCount() const { return uint64_t(constants.windowWidth) * constants.windowHeight; }
-  uint64_t fullPixelOfStored(uint64_t stored) const {
-    const uint64_t row = stored / constants.windowWidth, column = stored % constants.windowWidth;
-    return (row + constants.windowY0) * pixelsX + column + constants.windowX0;
-  }
-  // Whether the device stores pixel `pixel` (row-major over the sensor).
-  bool storesPixel(uint64_t pixel) const {
-    const uint64_t row = pixel / pixelsX, column = pixel % pixelsX;
-    return row >= constants.windowY0 && row < uint64_t(constants.windowY0) + constants.windowHeight &&
-           column >= constants.windowX0 && column < uint64_t(constants.windowX0) + constants.windowWidth;
-  }
-  bool weighted() const { return constants.weightUnits != 1; }
-  // An all-zero histogram of this plan's shape (all bins of the spectrum).
-  SpectralHistogram emptyHistogram() const {
-    return SpectralHistogram(pixelsX, pixelsY, bins, exactColour(), constants.weightUnits);
-  }
-  bool hasShapeOf(const SpectralHistogram& h) const {
-    return h.pixelsX == pixelsX && h.pixelsY == pixelsY && h.bins == bins && h.hasExactColour() == exactColour() &&
-           h.unitsPerBeam == constants.weightUnits;
-  }
-  bool exactColour() const { return constants.exactColour != 0; }
-  uint32_t countersPerPixel() const { return constants.countersPerPixel; }
   // W/m^2 per bin carried by one count when `beams` beams were traced: a
   // full-weight beam carries sampledPowerW * exposure / beams joules, spread
   // over one pixel's area and the exposure time (which cancels), and adds
   // weightUnits counts.
   double irradiancePerCount(uint64_t beams) const {
-    return sampledPowerW / (double(beams) * pixelAreaM2 * double(constants.weightUnits));
+    return sampledPowerW / (double(beams) * film.pixelAreaM2 * double(film.weightUnits));
   }
 };
 

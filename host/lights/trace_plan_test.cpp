@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 
 #include "scene/scene_builders.h"
 
@@ -36,8 +36,8 @@ TEST(AimedPlan, PointLightSamplesTheConeOfThePinhole) {
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
   EXPECT_GT(plan.summaries[0].largestWeight, exact) << "the sampled cone must hold the whole pinhole";
   EXPECT_NEAR(plan.sampledPowerW, plan.tracedPowerW * plan.summaries[0].largestWeight, 1e-15);
-  EXPECT_FALSE(plan.weighted()) << "point-light weights are all 1: plain hit counts";
-  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u);
+  EXPECT_FALSE(plan.film.weighted()) << "point-light weights are all 1: plain hit counts";
+  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u);
 }
 
 TEST(AimedPlan, LightChoiceFollowsPowerTimesLargestWeight) {
@@ -72,7 +72,7 @@ TEST(AimedPlan, AimsOnlyWhereItNarrowsTheSampling) {
     EXPECT_EQ(plan.summaries[i].largestWeight, 1.0) << plan.summaries[i].label;
   }
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
-  EXPECT_FALSE(plan.weighted());
+  EXPECT_FALSE(plan.film.weighted());
 }
 
 TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
@@ -85,15 +85,15 @@ TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
   scene.lights = {disk};
   const TracePlan plan = buildTracePlan(scene, 1);
   EXPECT_EQ(plan.lights[0].aimed, 1u);
-  EXPECT_TRUE(plan.weighted());
+  EXPECT_TRUE(plan.film.weighted());
   EXPECT_EQ(plan.constants.weightUnits, device::kWeightUnitsFractional);
-  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u + 1u);
+  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u + 1u);
   const double exact = 2.0 * oneMinusCos(0.0005);
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
   EXPECT_NEAR(double(plan.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
-  const SpectralHistogram h = plan.emptyHistogram();
+  const SpectralHistogram h = plan.film.emptyHistogram();
   EXPECT_TRUE(h.isWeighted());
-  EXPECT_EQ(h.squaredWeightSums.size(), plan.pixelCount());
+  EXPECT_EQ(h.squaredWeightSums.size(), plan.film.pixelCount());
 }
 
 TEST(AimedPlan, NoAimIsTheAnalogPlan) {
@@ -106,8 +106,8 @@ TEST(AimedPlan, NoAimIsTheAnalogPlan) {
   const TracePlan plan = buildTracePlan(scene, 1, options);
   for (const auto& light : plan.lights) EXPECT_EQ(light.aimed, 0u);
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
-  EXPECT_FALSE(plan.weighted());
-  EXPECT_EQ(plan.countersPerPixel(), plan.storedBins() + 3u);
+  EXPECT_FALSE(plan.film.weighted());
+  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u);
 }
 
 TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
@@ -139,7 +139,7 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
     } catch (const SceneError&) {
       continue;  // the light cannot reach the sensor
     }
-    windowed += plan.storedPixelCount() < plan.pixelCount();
+    windowed += plan.film.storedPixelCount() < plan.film.pixelCount();
     device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals);
     const auto& c = plan.constants;
     int outside = 0;
@@ -147,7 +147,7 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
       uint32_t pixel, bin;
       if (!kernel.trace(i, pixel, bin)) continue;
       ++beamsChecked;
-      outside += !plan.storesPixel(pixel);
+      outside += !plan.film.storesPixel(pixel);
     }
     EXPECT_EQ(outside, 0) << "trial " << trial << " (" << lightTypeName(type) << (pinhole ? ", pinhole" : ", bare")
                           << "): window " << c.windowX0 << "+" << c.windowWidth << ", " << c.windowY0 << "+"

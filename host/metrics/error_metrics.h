@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cpu/spectral_histogram.h"
+#include "film/spectral_histogram.h"
 #include "io/image.h"
 
 namespace spectrace {

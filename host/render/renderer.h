@@ -6,17 +6,14 @@
 #include <functional>
 #include <string>
 
-#include "cpu/resolve_cpu.h"
-#include "cpu/spectral_histogram.h"
+#include "backend/device.h"
+#include "film/develop.h"
+#include "film/spectral_histogram.h"
 #include "io/image.h"
 #include "lights/trace_plan.h"
-#include "render/specialisation.h"
 #include "scene/scene.h"
 
 namespace spectrace {
-
-enum class DeviceChoice { Auto, Gpu, Cpu };
-DeviceChoice parseDeviceChoice(const std::string& text);  // throws std::invalid_argument
 
 struct RenderOptions {
   uint64_t beams = 0;        // total beams
@@ -44,7 +41,7 @@ struct RenderResult {
   SpectralHistogram histogram;
   RenderImage image;
   uint64_t beamsTraced = 0;     // < options.beams only when cancelled
-  std::string deviceKind;       // "gpu" or "cpu"
+  DeviceKind deviceKind = DeviceKind::Cpu;
   std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads"
   double wallSeconds = 0.0;
   double traceWallSeconds = 0.0;      // the batch loop alone (no device setup, no resolve)
@@ -52,10 +49,12 @@ struct RenderResult {
   double resolveDeviceSeconds = 0.0;
 
   // "name (kind)", as written into EXR headers.
-  std::string deviceLabel() const { return deviceName + " (" + deviceKind + ")"; }
+  std::string deviceLabel() const { return deviceName + " (" + deviceKindName(deviceKind) + ")"; }
 };
 
 RenderResult render(const Scene& scene, const RenderOptions& options);
+// The same render on a device opened by the caller (options.device unused).
+RenderResult render(const Scene& scene, const RenderOptions& options, const Device& device);
 
 // The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
 // the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 #include "rng/philox.h"
 #include "spectrum/cie_data.h"
 #include "spectrum/spd.h"

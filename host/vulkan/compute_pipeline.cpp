@@ -21,7 +21,7 @@ std::string declaredBindings(const std::vector<BindingSpec>& bindings) {
 
 ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigned char> spirv,
                                  std::vector<BindingSpec> bindings, uint32_t pushConstantBytes,
-                                 std::vector<uint32_t> specConstants)
+                                 std::vector<SpecConstant> specConstants)
     : context_(&context), bindings_(std::move(bindings)), pushConstantBytes_(pushConstantBytes) {
   const DeviceInfo& info = context.info();
   if (spirv.empty() || spirv.size() % 4 != 0)
@@ -77,12 +77,15 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
   }
 
   std::vector<vk::SpecializationMapEntry> specEntries;
-  for (uint32_t i = 0; i < specConstants.size(); ++i)
-    specEntries.push_back(vk::SpecializationMapEntry{.constantID = i, .offset = 4 * i, .size = 4});
+  std::vector<uint32_t> specValues;
+  for (uint32_t i = 0; i < specConstants.size(); ++i) {
+    specEntries.push_back(vk::SpecializationMapEntry{.constantID = specConstants[i].id, .offset = 4 * i, .size = 4});
+    specValues.push_back(specConstants[i].value);
+  }
   const vk::SpecializationInfo specInfo{.mapEntryCount = uint32_t(specEntries.size()),
                                         .pMapEntries = specEntries.data(),
-                                        .dataSize = specConstants.size() * 4,
-                                        .pData = specConstants.data()};
+                                        .dataSize = specValues.size() * 4,
+                                        .pData = specValues.data()};
   try {
     vk::raii::ShaderModule module(
         device, vk::ShaderModuleCreateInfo{.codeSize = words.size() * 4, .pCode = words.data()});

@@ -21,15 +21,21 @@ struct BindingSpec {
   uint32_t count = 1;
 };
 
+// A specialisation constant: `value` for the shader's constant_id `id`.
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;
+};
+
 class ComputePipeline {
  public:
   // spirv: SPIR-V bytes (a whole number of 4-byte words, entry point "main").
-  // specConstants[i] -> constant_id i (uint32). Creates its own descriptor
+  // specConstants: uint32 values by constant_id. Creates its own descriptor
   // pool and set. VulkanError on malformed SPIR-V, bindings the device cannot
   // hold, push constants over maxPushConstantsSize, or pipeline creation
   // failure.
   ComputePipeline(const Context&, std::span<const unsigned char> spirv, std::vector<BindingSpec> bindings,
-                  uint32_t pushConstantBytes, std::vector<uint32_t> specConstants = {});
+                  uint32_t pushConstantBytes, std::vector<SpecConstant> specConstants = {});
 
   // Points element `arrayElement` of `binding` at [offset, offset + range) of
   // `buffer` (VK_WHOLE_SIZE: to the end). Refuses ranges larger than the

@@ -270,7 +270,7 @@ class VulkanCompute : public ::testing::Test {
   std::unique_ptr<Context> ctx = Context::create();
   ComputePipeline makePipeline() {
     return ComputePipeline(*ctx, embedded::spv_vk_test_atomic_counters(), {{.binding = 0, .count = 2}}, sizeof(Push),
-                           {kLocalSize, kSlots});
+                           {{0, kLocalSize}, {1, kSlots}});
   }
 };
 

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <string>
 
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 #include "lights/trace_plan.h"
-#include "render/gpu_tracer.h"
+#include "backend/vulkan_tracer.h"
 #include "support/test_scenes.h"
 
 namespace spectrace::testing {
@@ -34,7 +34,7 @@ inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) 
 // first few differences and the totals, and records the agreement rate as a
 // test property.
 inline BeamAgreement beamByBeam(const TracePlan& plan, uint64_t firstBeam, uint32_t count, const std::string& name) {
-  GpuTracer gpu(sharedVulkan(), plan);
+  VulkanTracer gpu(sharedVulkan(), plan);
   const auto records = gpu.traceRecorded(firstBeam, count);
   device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
   BeamAgreement result;

@@ -12,7 +12,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 
-#include "cpu/spectral_histogram.h"
+#include "film/spectral_histogram.h"
 #include "lights/trace_plan.h"
 
 namespace spectrace::testing {

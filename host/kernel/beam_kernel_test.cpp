@@ -2,7 +2,7 @@
 // (chi-square against the SPD), exact integer CDFs, the trig polynomials and
 // the direction samplers. The GPU runs the same text; gpu tests compare the
 // two beam for beam.
-#include "cpu/beam_kernel.h"
+#include "kernel/beam_kernel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,16 @@
 #pragma once
-// The CPU instance of the shared beam code (shaders/beam_math.h,
-// shaders/beam_trace.h): the same text the trace shader runs, compiled as
-// C++ member functions over host arrays, with Philox from Random123.
+// The CPU instance of the shared kernel (shaders/trace.h and what it
+// includes): the same text the trace shader runs, compiled as C++ member
+// functions over host arrays, with Philox from Random123. The includer
+// contract is shaders/kernel_interface.h; a KernelIncluder concept checks
+// it here. Built with -ffp-contract=off (see host/kernel/CMakeLists.txt).
+#include <atomic>
 #include <span>
 
 #include <glm/glm.hpp>
 
 #include "device_shared.h"
+#include "kernel_interface.h"
 #include "rng/philox.h"
 
 namespace spectrace::device {
@@ -16,9 +20,14 @@ using namespace glm;
 
 class BeamKernel {
  public:
+  // `counters`: the film's counters of every stored pixel in one chunk
+  // (constants.pixelsPerChunk must cover them), which countBeam adds to
+  // with relaxed atomics; empty when the kernel only traces.
   BeamKernel(const TraceConstants& traceConstants, std::span<const LightRecord> lightRecords,
-             std::span<const SpectralInterval> spectralIntervals, std::span<const glm::vec3> cmfNodes = {})
-      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), cmf(cmfNodes) {}
+             std::span<const SpectralInterval> spectralIntervals, std::span<const glm::vec3> cmfNodes = {},
+             std::span<uint64_t> filmCounters = {})
+      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), cmf(cmfNodes),
+        counters(filmCounters) {}
 
   // Whether beam `index` is counted, its pixel and (stored) bin, and what
   // it adds to the bin (weightUnits x its weight ratio). (The shared
@@ -31,12 +40,7 @@ class BeamKernel {
     return hit;
   }
 
- private:
-  TraceConstants constants;
-  std::span<const LightRecord> lights;
-  std::span<const SpectralInterval> intervals;
-  std::span<const glm::vec3> cmf;
-
+  // The includer contract (kernel_interface.h).
   static uvec4 philox4x32(uint64_t seed, uint64_t index, uint block) {
     const auto w = spectrace::philoxWords(seed, index, block);
     return uvec4(w[0], w[1], w[2], w[3]);
@@ -46,11 +50,23 @@ class BeamKernel {
   LightRecord readLight(uint i) const { return lights[i]; }
   SpectralInterval readInterval(uint i) const { return intervals[i]; }
   vec3 readCmf(uint i) const { return cmf[i]; }
+  // One chunk on the CPU: `chunk` is always 0.
+  void addCount(uint /*chunk*/, uint index, uint64_t amount) const {
+    std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount, std::memory_order_relaxed);
+  }
+
+ private:
+  TraceConstants constants;
+  std::span<const LightRecord> lights;
+  std::span<const SpectralInterval> intervals;
+  std::span<const glm::vec3> cmf;
+  std::span<uint64_t> counters;
 
  public:
   // The shared functions are public so tests can probe them one by one.
-#include "beam_math.h"
-#include "beam_trace.h"
+#include "trace.h"
 };
+
+static_assert(KernelIncluder<BeamKernel>);
 
 }  // namespace spectrace::device

@@ -1,4 +1,4 @@
-#include "cpu/resolve_cpu.h"
+#include "film/develop.h"
 
 #include "device_shared.h"
 

@@ -6,7 +6,7 @@
 
 #include <glm/mat3x3.hpp>
 
-#include "cpu/spectral_histogram.h"
+#include "film/spectral_histogram.h"
 #include "io/image.h"
 
 namespace spectrace {

@@ -1,0 +1,89 @@
+#include "backend/cpu_tracer.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <thread>
+
+#include "kernel/beam_kernel.h"
+
+namespace spectrace {
+
+CpuTracer::CpuTracer(const TracePlan& plan, unsigned threads)
+    : plan_(plan),
+      threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
+      counters_(plan.film.storedCounterCount(), 0) {
+  // One chunk holds every stored pixel.
+  plan_.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
+}
+
+std::string CpuTracer::deviceName() const { return fmt::format("CPU reference, {} threads", threads_); }
+
+uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
+  const device::BeamKernel kernel(plan_.constants, plan_.lights, plan_.intervals, plan_.cmfTable, counters_);
+  std::atomic<uint64_t> counted{0};
+  // Threads take blocks of beams in order. When cancelled, each finishes
+  // its block, so the traced beams stay one contiguous prefix.
+  constexpr uint64_t kBlock = 1 << 16;
+  const uint64_t blockCount = (beamCount + kBlock - 1) / kBlock;
+  std::atomic<uint64_t> nextBlock{0};
+  std::atomic<uint64_t> stoppedAtBlock{blockCount};
+  auto worker = [&] {
+    device::BeamKernel local = kernel;
+    uint64_t countedHere = 0;
+    for (;;) {
+      const uint64_t block = nextBlock.fetch_add(1, std::memory_order_relaxed);
+      if (block >= blockCount) break;
+      if (cancel && cancel->load(std::memory_order_relaxed)) {
+        uint64_t expected = stoppedAtBlock.load();
+        while (block < expected && !stoppedAtBlock.compare_exchange_weak(expected, block)) {}
+        break;
+      }
+      const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
+      for (uint64_t i = block * kBlock; i < end; ++i) countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
+    }
+    counted.fetch_add(countedHere, std::memory_order_relaxed);
+  };
+  std::vector<std::jthread> pool;
+  for (unsigned t = 1; t < threads_; ++t) pool.emplace_back(worker);
+  worker();
+  pool.clear();  // joins
+  countedBeams_ += counted.load();
+  return std::min(beamCount, stoppedAtBlock.load() * kBlock);
+}
+
+void CpuTracer::clear() {
+  std::fill(counters_.begin(), counters_.end(), 0);
+  countedBeams_ = 0;
+}
+
+SpectralHistogram CpuTracer::download() const {
+  SpectralHistogram histogram = plan_.film.emptyHistogram();
+  unpackDeviceCounters(counters_, plan_.film, 0, histogram);
+  histogram.countedBeams = countedBeams_;
+  return histogram;
+}
+
+void CpuTracer::upload(const SpectralHistogram& histogram) {
+  if (!plan_.film.hasShapeOf(histogram))
+    throw std::invalid_argument("CpuTracer::upload: the histogram's shape differs from the film's");
+  packDeviceCounters(histogram, plan_.film, 0, counters_);
+  countedBeams_ = histogram.countedBeams;
+}
+
+RenderImage CpuTracer::develop(const ResolveParameters& parameters) { return resolveOnCpu(download(), parameters); }
+
+std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
+  device::BeamKernel kernel(plan_.constants, plan_.lights, plan_.intervals, plan_.cmfTable);
+  std::vector<device::BeamRecord> records(count);
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t pixel, bin;
+    uint64_t units = 0;
+    records[i] = kernel.trace(firstBeam + i, pixel, bin, &units)
+                     ? device::BeamRecord{pixel, bin, uint32_t(units), 0u}
+                     : device::BeamRecord{device::kBeamMissed, device::kBeamMissed, 0u, 0u};
+  }
+  return records;
+}
+
+}  // namespace spectrace

@@ -1,0 +1,35 @@
+#pragma once
+// The CPU reference (--device cpu): multithreaded, drawing exactly the beams
+// the GPU draws through the same shared kernel (host/kernel), counting into
+// the same device counter layout.
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "backend/tracer.h"
+#include "lights/trace_plan.h"
+
+namespace spectrace {
+
+class CpuTracer final : public Tracer {
+ public:
+  // threads = 0: all hardware threads.
+  explicit CpuTracer(const TracePlan& plan, unsigned threads = 0);
+
+  DeviceKind kind() const override { return DeviceKind::Cpu; }
+  std::string deviceName() const override;
+  uint64_t trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel = nullptr) override;
+  void clear() override;
+  SpectralHistogram download() const override;
+  void upload(const SpectralHistogram& histogram) override;
+  RenderImage develop(const ResolveParameters& parameters) override;
+  std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count) override;
+
+ private:
+  TracePlan plan_;
+  unsigned threads_;
+  std::vector<uint64_t> counters_;  // the stored pixels' counters, one chunk
+  uint64_t countedBeams_ = 0;
+};
+
+}  // namespace spectrace

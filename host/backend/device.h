@@ -1,0 +1,55 @@
+#pragma once
+// Devices a tracer can run on: Vulkan devices (a GPU, or lavapipe) and the
+// CPU reference. A Device is opened once and makes tracers for scenes.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backend/specialisation.h"
+#include "backend/tracer.h"
+#include "lights/trace_plan.h"
+
+namespace spectrace {
+namespace vk_util {
+class Context;
+}
+
+enum class DeviceChoice { Auto, Gpu, Cpu };
+DeviceChoice parseDeviceChoice(const std::string& text);  // throws std::invalid_argument
+
+// How a tracer is built; each backend reads its part.
+struct TracerOptions {
+  uint32_t workgroupSize = 64;                     // Vulkan
+  uint32_t specialisedFeatures = kSpecialiseAll;   // Vulkan: SpecialisedFeature bits
+  unsigned cpuThreads = 0;                         // CPU: 0 = all hardware threads
+};
+
+// A device to open: a Vulkan device by index, or the CPU reference.
+struct DeviceSpec {
+  DeviceKind kind = DeviceKind::Cpu;
+  std::string name;
+  int vulkanIndex = -1;
+};
+
+// Every usable Vulkan device, then the CPU reference, filtered by a
+// comma-separated list of "gpu", "cpu" or device names (empty: all).
+std::vector<DeviceSpec> listDevices(const std::string& filter = "");
+
+class Device {
+ public:
+  // auto: a hardware GPU if any, else lavapipe, else the CPU reference
+  // (saying why through `log`); gpu: a Vulkan device or VulkanError.
+  static std::unique_ptr<Device> open(DeviceChoice choice, const std::function<void(const std::string&)>& log = {});
+  static std::unique_ptr<Device> open(const DeviceSpec& spec);
+  ~Device();
+
+  DeviceKind kind() const { return vulkan_ ? DeviceKind::Vulkan : DeviceKind::Cpu; }
+  std::unique_ptr<Tracer> makeTracer(const TracePlan& plan, const TracerOptions& options = {}) const;
+
+ private:
+  explicit Device(std::unique_ptr<vk_util::Context> vulkan);
+  std::unique_ptr<vk_util::Context> vulkan_;  // null for the CPU reference
+};
+
+}  // namespace spectrace

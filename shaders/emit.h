@@ -1,0 +1,60 @@
+// Emission, the seed's getNextBeam(): which light, which wavelength, and
+// the light's own unit (lights/<type>.h) for origin, direction and weight.
+#ifndef SPECTRACE_EMIT_H
+#define SPECTRACE_EMIT_H
+
+#include "lights/aimed_cone.h"
+#include "lights/lambertian.h"
+#include "lights/point.h"
+#include "lights/spot.h"
+#include "lights/disk.h"
+#include "lights/rect.h"
+#include "lights/laser.h"
+
+SPECTRACE_CDF_SEARCH(searchLight, readLightCdf)
+SPECTRACE_CDF_SEARCH(searchSpectralInterval, readSpectralCdf)
+
+// A light in proportion to its sampled power: an exact integer CDF over a
+// 64-bit uniform from the light block (drawn only when there is a choice).
+FN uint chooseLight(uint64_t seed, uint64_t beamIndex) {
+  uint lightIndex = 0u;
+  if (SPECTRACE_SELECT_LIGHT) {
+    uvec4 select = philox4x32(seed, beamIndex, kRngBlockLight);
+    lightIndex = searchLight(0u, constants.lightCount, joinWords(select.x, select.y));
+  }
+  return lightIndex;
+}
+
+// A wavelength from one light's spectral table: the interval by an exact
+// integer CDF over a 64-bit uniform, the position inside it in closed form.
+FN float drawWavelength(uint spectralFirst, uint spectralCount, uint64_t intervalUniform, float positionUniform) {
+  uint intervalIndex = searchSpectralInterval(spectralFirst, spectralCount, intervalUniform);
+  SpectralInterval interval = readInterval(intervalIndex);
+  return wavelengthInInterval(interval.lambda0, interval.width, interval.slope, positionUniform);
+}
+
+// Origin and direction of a beam from `light` from four uniforms, through
+// the light type's unit, aimed where the host set it up; returns the weight
+// ratio (emission density / sampling density, over the light's largest
+// such value; 0: the beam carries nothing).
+FN float emitLightBeam(LightRecord light, float ou, float ov, float du, float dv, OUT(vec3) origin,
+                       OUT(vec3) direction) {
+  bool aimed = SPECTRACE_AIM && light.aimed != 0u;
+  float ratio = 1.0f;
+  origin = light.position;
+  direction = light.axis;
+  if (SPECTRACE_LIGHT_ENABLED(kLightPoint) && light.type == kLightPoint) {
+    ratio = emitPointBeam(light, aimed, du, dv, origin, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightSpot) && light.type == kLightSpot) {
+    ratio = emitSpotBeam(light, aimed, du, dv, origin, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightDisk) && light.type == kLightDisk) {
+    ratio = emitDiskBeam(light, aimed, ou, ov, du, dv, origin, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightRect) && light.type == kLightRect) {
+    ratio = emitRectBeam(light, aimed, ou, ov, du, dv, origin, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightLaser) && light.type == kLightLaser) {
+    ratio = emitLaserBeam(light, aimed, ou, ov, origin, direction);
+  }
+  return ratio;
+}
+
+#endif  // SPECTRACE_EMIT_H

@@ -1,0 +1,27 @@
+// Feature switches of the shared kernel. The trace shader defines them from
+// specialisation constants, so a pipeline built for a scene compiles out
+// what the scene lacks; these defaults (everything decided at run time) are
+// the general pipeline's, and the CPU reference's. Each needs `constants`.
+#ifndef SPECTRACE_KERNEL_FEATURES_H
+#define SPECTRACE_KERNEL_FEATURES_H
+
+#ifndef SPECTRACE_LIGHT_ENABLED
+#define SPECTRACE_LIGHT_ENABLED(type) true
+#endif
+#ifndef SPECTRACE_SELECT_LIGHT
+#define SPECTRACE_SELECT_LIGHT (constants.lightCount > 1u)
+#endif
+#ifndef SPECTRACE_PINHOLE
+#define SPECTRACE_PINHOLE(apertureDistance) ((apertureDistance) > 0.0f)
+#endif
+#ifndef SPECTRACE_AIM
+#define SPECTRACE_AIM true
+#endif
+#ifndef SPECTRACE_EXACT_COLOUR
+#define SPECTRACE_EXACT_COLOUR (constants.exactColour != 0u)
+#endif
+#ifndef SPECTRACE_SQUARED_WEIGHTS
+#define SPECTRACE_SQUARED_WEIGHTS (constants.weightUnits != 1u)
+#endif
+
+#endif  // SPECTRACE_KERNEL_FEATURES_H

@@ -1,0 +1,43 @@
+// The includer contract of the shared kernel (trace.h and what it
+// includes). Each includer (shaders/trace_beams.comp, and the CPU instance
+// host/kernel/beam_kernel.h) provides, besides the types of
+// device_shared.h and a `constants` of type TraceConstants:
+//   uvec4 philox4x32(uint64_t seed, uint64_t index, uint block)  random words
+//   uint64_t readLightCdf(uint light)         LightRecord.selectCdfLow
+//   uint64_t readSpectralCdf(uint interval)   SpectralInterval.cdfLow
+//   LightRecord readLight(uint light)
+//   SpectralInterval readInterval(uint interval)
+//   vec3 readCmf(uint node)                   the observer's CMF table
+//   void addCount(uint chunk, uint counter, uint64_t amount)
+//                                             adds to one film counter
+// GLSL gets the prototypes below, so a missing function fails at the
+// shader's compile; C++ checks the same list with a concept.
+#ifndef SPECTRACE_KERNEL_INTERFACE_H
+#define SPECTRACE_KERNEL_INTERFACE_H
+
+#ifdef __cplusplus
+#include <concepts>
+#include <cstdint>
+namespace spectrace::device {
+template <typename K>
+concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
+  { K::philox4x32(amount, amount, i) };
+  { k.readLightCdf(i) } -> std::same_as<uint64_t>;
+  { k.readSpectralCdf(i) } -> std::same_as<uint64_t>;
+  { k.readLight(i) } -> std::same_as<LightRecord>;
+  { k.readInterval(i) } -> std::same_as<SpectralInterval>;
+  { k.readCmf(i) };
+  { k.addCount(i, i, amount) };
+};
+}  // namespace spectrace::device
+#else
+uvec4 philox4x32(uint64_t seed, uint64_t index, uint block);
+uint64_t readLightCdf(uint light);
+uint64_t readSpectralCdf(uint interval);
+LightRecord readLight(uint light);
+SpectralInterval readInterval(uint interval);
+vec3 readCmf(uint node);
+void addCount(uint chunk, uint counter, uint64_t amount);
+#endif
+
+#endif  // SPECTRACE_KERNEL_INTERFACE_H

@@ -1,0 +1,13 @@
+// Point light (kernel unit; host unit: host/lights/point_light.cpp):
+// isotropic from `position`. Aimed: uniform in the cone holding the
+// target, every beam with weight ratio 1.
+#ifndef SPECTRACE_LIGHTS_POINT_H
+#define SPECTRACE_LIGHTS_POINT_H
+
+FN float emitPointBeam(LightRecord light, bool aimed, float du, float dv, OUT(vec3) origin, OUT(vec3) direction) {
+  origin = light.position;
+  direction = aimed ? aimedConeDirection(light, du, dv) : sampleSphere(du, dv);
+  return 1.0f;
+}
+
+#endif  // SPECTRACE_LIGHTS_POINT_H

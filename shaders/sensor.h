@@ -1,0 +1,122 @@
+// The camera's side of the kernel: where a beam crosses the sensor (the
+// seed's Camera.computeBeam()) and what a counted beam adds to the film's
+// counters (countBeam), written once for the shader and the CPU reference.
+#ifndef SPECTRACE_SENSOR_H
+#define SPECTRACE_SENSOR_H
+
+// The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
+// camera frame and looks along +z, so a beam counts only when it travels
+// towards -z from z > 0 (with a pinhole: from beyond the aperture plane and
+// through the aperture disk). Returns the pixel index, or false for a miss.
+// A beam parallel to the sensor (direction.z == 0) never reaches the
+// division; NaN or infinite hit points fail the bounds tests.
+FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetre, uint pixelsX,
+                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uint) pixel) {
+  pixel = 0u;
+  if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
+  PRECISE float hx;
+  PRECISE float hy;
+  bool flip = SPECTRACE_PINHOLE(apertureDistance);
+  if (flip) {
+    PRECISE float ta = (origin.z - apertureDistance) / -direction.z;
+    PRECISE float ax = origin.x + ta * direction.x;
+    PRECISE float ay = origin.y + ta * direction.y;
+    if (!(ax * ax + ay * ay <= apertureRadiusSq)) return false;
+    PRECISE float ts = apertureDistance / -direction.z;
+    hx = ax + ts * direction.x;
+    hy = ay + ts * direction.y;
+  } else {
+    PRECISE float t = origin.z / -direction.z;
+    hx = origin.x + t * direction.x;
+    hy = origin.y + t * direction.y;
+  }
+  if (!(abs(hx) < halfSize.x) || !(abs(hy) < halfSize.y)) return false;
+  // Image columns run along +x (camera right) and rows down from +y; a
+  // pinhole image is inverted on the sensor, so flip it upright.
+  PRECISE float fx = flip ? (halfSize.x - hx) * pixelsPerMetre.x : (hx + halfSize.x) * pixelsPerMetre.x;
+  PRECISE float fy = flip ? (hy + halfSize.y) * pixelsPerMetre.y : (halfSize.y - hy) * pixelsPerMetre.y;
+  uint column = min(uint(max(fx, 0.0f)), pixelsX - 1u);
+  uint row = min(uint(max(fy, 0.0f)), pixelsY - 1u);
+  pixel = row * pixelsX + column;
+  return true;
+}
+
+// The observer's CMF at a wavelength, linear between the table's nodes and
+// zero outside.
+FN vec3 cmfAtWavelength(float lambda) {
+  PRECISE float x = (lambda - constants.cmfLambdaMin) * constants.cmfNodesPerNm;
+  vec3 result = vec3(0.0f, 0.0f, 0.0f);
+  if (x >= 0.0f && x <= float(constants.cmfCount - 1u)) {
+    uint node = min(uint(x), constants.cmfCount - 2u);
+    PRECISE float t = x - float(node);
+    vec3 a = readCmf(node);
+    vec3 b = readCmf(node + 1u);
+    PRECISE vec3 c = a + (b - a) * t;
+    result = c;
+  }
+  return result;
+}
+
+// `scaled` rounded down or up, up with probability equal to its fraction,
+// so the sum is unbiased (to 2^-24 of a unit, the resolution of `u`, a
+// uniform in [0, 1)). floor and the subtraction are exact in float.
+FN uint64_t roundStochastic(float scaled, float u) {
+  PRECISE float whole = floor(scaled);
+  PRECISE float fraction = scaled - whole;
+  return uint64_t(whole) + (u < fraction ? 1ul : 0ul);
+}
+
+// A CMF value (times the beam's weight ratio) in colour fixed point. The
+// scaling by 2^20 is exact.
+FN uint64_t colourFixedPoint(float value, float u) {
+  PRECISE float scaled = value * kColourFixedPointScale;
+  return roundStochastic(scaled, u);
+}
+
+// What a counted beam of weight ratio `ratio` adds to its bin, and
+// ratio^2 in the same units to its pixel's squared-weight counter, in units
+// of 1 / weightUnits of a full-weight beam (device_shared.h). With
+// weightUnits == 1 every ratio is 1.
+FN uint64_t weightUnitsOf(float ratio, float u) {
+  PRECISE float scaled = ratio * float(constants.weightUnits);  // exact: a power of two
+  return constants.weightUnits == 1u ? 1ul : roundStochastic(scaled, u);
+}
+FN uint64_t squaredWeightUnitsOf(float ratio, float u) {
+  PRECISE float scaled = (ratio * ratio) * float(constants.weightUnits);
+  return roundStochastic(scaled, u);
+}
+
+// Adds a beam that hit `pixel` (row-major over the sensor) in stored bin
+// `bin` to the film: its weight to the bin, its own CMF values (exact
+// colour) and its squared weight, through the includer's addCount, in the
+// layout of device_shared.h (countersPerPixelOf). Returns false for a pixel
+// outside the stored window, which the host proves unreachable (the tests
+// against the whole sensor would show a disproof); the guard keeps such a
+// beam in bounds.
+FN bool countBeam(uint pixel, uint bin, float lambda, float ratio, float spareUniform) {
+  uint row = pixel / constants.pixelsX;
+  uint column = pixel - row * constants.pixelsX;
+  uint windowRow = row - constants.windowY0;  // wraps to large when row < windowY0
+  uint windowColumn = column - constants.windowX0;
+  bool inside = windowRow < constants.windowHeight && windowColumn < constants.windowWidth;
+  if (inside) {
+    uint stored = windowRow * constants.windowWidth + windowColumn;
+    uint chunk = stored / constants.pixelsPerChunk;
+    uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
+    addCount(chunk, base + bin, weightUnitsOf(ratio, spareUniform));
+    bool exactColour = SPECTRACE_EXACT_COLOUR;
+    if (exactColour) {
+      PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
+      uint colour = base + colourCounterOffset(constants.bins);
+      addCount(chunk, colour, colourFixedPoint(cmf.x, spareUniform));
+      addCount(chunk, colour + 1u, colourFixedPoint(cmf.y, spareUniform));
+      addCount(chunk, colour + 2u, colourFixedPoint(cmf.z, spareUniform));
+    }
+    if (SPECTRACE_SQUARED_WEIGHTS)
+      addCount(chunk, base + squaredWeightCounterOffset(constants.bins, exactColour),
+               squaredWeightUnitsOf(ratio, spareUniform));
+  }
+  return inside;
+}
+
+#endif  // SPECTRACE_SENSOR_H
