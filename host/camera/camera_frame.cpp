@@ -2,6 +2,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/scene_error.h"
+
 namespace spectrace {
 
 CameraFrame CameraFrame::fromCamera(const Camera& camera) {

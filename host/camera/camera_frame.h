@@ -4,7 +4,7 @@
 // from the world origin loses no float precision.
 #include <glm/vec3.hpp>
 
-#include "scene/scene.h"
+#include "camera/camera.h"
 
 namespace spectrace {
 

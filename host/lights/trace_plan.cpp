@@ -9,207 +9,19 @@
 
 #include "camera/camera_frame.h"
 #include "kernel/beam_kernel.h"
+#include "lights/light_shared.h"
 #include "colour/colour.h"
 #include "spectrum/wavelength_sampler.h"
 
 namespace spectrace {
 namespace {
 
-glm::vec3 toFloat(const glm::dvec3& v) { return glm::vec3(v); }
-
-// Any unit vector perpendicular to `n` (Duff et al. 2017, branchless ONB).
-glm::dvec3 perpendicular(const glm::dvec3& n) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double b = n.x * n.y * a;
-  return {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
-}
-
-// Why a light (in the camera frame) can never put a beam on the sensor, or
-// "" when it might. Counted beams start beyond the plane z = D (the sensor,
-// or the aperture of a pinhole camera) and travel towards -z; the test is
-// conservative: it only rejects what provably contributes nothing.
-std::string unreachableBecause(const Light& light, const glm::dvec3& position, const glm::dvec3& axis,
-                               const glm::dvec3& tangent, const glm::dvec3& bitangent, const Camera& camera) {
-  const double planeZ = camera.pinhole ? camera.pinhole->distanceM : 0.0;
-  const char* plane = camera.pinhole ? "the pinhole's aperture plane" : "the sensor plane";
-  // Largest z any emission point reaches.
-  double extent = 0.0;
-  switch (light.type) {
-    case LightType::Disk:
-    case LightType::Laser: extent = light.radiusM * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z)); break;
-    case LightType::Rect: extent = 0.5 * (light.sizeM.x * std::abs(tangent.z) + light.sizeM.y * std::abs(bitangent.z)); break;
-    default: break;
-  }
-  if (!(position.z + extent > planeZ)) return fmt::format("it lies behind {}", plane);
-  switch (light.type) {
-    case LightType::Spot: {
-      // Some direction in the cone points towards -z iff the angle between
-      // the axis and -z is below 90 degrees plus the half angle.
-      const double angle = std::acos(std::clamp(-axis.z, -1.0, 1.0));
-      if (!(angle < M_PI / 2 + light.coneHalfAngleDeg * M_PI / 180.0)) return "its cone points away from the camera";
-      break;
-    }
-    case LightType::Disk:
-    case LightType::Rect:
-      if (!(axis.z < 1.0)) return "it faces away from the camera";
-      break;
-    case LightType::Laser: {
-      if (!(axis.z < 0.0)) return "its beam points away from the camera";
-      // The beam's footprint in the plane z = planeZ: the disk's centre moved
-      // along the axis, inside a circle of radius R / |axis.z| (the
-      // ellipse's semi-major axis).
-      const double t = (position.z - planeZ) / -axis.z;
-      const glm::dvec2 centre(position.x + t * axis.x, position.y + t * axis.y);
-      const double reach = light.radiusM / -axis.z;
-      if (camera.pinhole) {
-        if (!(glm::length(centre) < reach + camera.pinhole->radiusM)) return "its beam misses the pinhole";
-      } else {
-        const glm::dvec2 half(0.5 * camera.sensorWidthM, 0.5 * camera.sensorHeightM);
-        const glm::dvec2 outside = glm::max(glm::abs(centre) - half, glm::dvec2(0.0));
-        if (!(glm::length(outside) < reach)) return "its beam misses the sensor";
-      }
-      break;
-    }
-    case LightType::Point: break;
-  }
-  return "";
-}
-
-// Aimed sampling. Every counted beam passes through the target sphere: the
-// pinhole's disk, or the bare sensor (its half diagonal). A light whose
-// beams can be drawn only towards that sphere gets aimed = 1 and these
-// parameters; each beam's weight is then (emission density) / (sampling
-// density), and the light's largest weight w_max is folded into its
-// selection probability (power x w_max), so the shader's weight ratio,
-// weight / w_max, lies in [0, 1]:
-// - point: uniform in the cone of half angle a holding the sphere, with
-//   h = 1 - cos a: weight = (1 / 4 pi) / (1 / 2 pi h) = h / 2, for every beam;
-// - spot (cone h_s = param0), when h < h_s: weight h / h_s inside the spot's
-//   cone, 0 outside;
-// - laser: origins uniform over the disk of radius rho around the target's
-//   projection along the beam, when rho < R: weight rho^2 / R^2 inside the
-//   laser's cross-section, 0 outside;
-// - disk, rect: per origin, uniform in the cone holding the sphere (h from
-//   that origin) when 2h < 1: weight cos(theta) / pi / (1 / 2 pi h) =
-//   2 h cos(theta); w_max bounds 2h over the emitter from its closest point.
-// Cones are widened by SPECTRACE_AIM_SLACK (beam_math.h) so float rounding
-// cannot leave a countable direction outside them, and the values the shader
-// samples with are the float values the weights are computed from.
-struct AimTarget {
-  glm::dvec3 centre;
-  double radius;
-};
-
+// The sphere every counted beam passes through: the pinhole's disk, or the
+// bare sensor (its half diagonal).
 AimTarget aimTarget(const Camera& camera) {
-  if (camera.pinhole) return {{0.0, 0.0, camera.pinhole->distanceM}, camera.pinhole->radiusM};
-  return {{0.0, 0.0, 0.0}, 0.5 * std::hypot(camera.sensorWidthM, camera.sensorHeightM)};
-}
-
-// 1 - cos(a) from sin(a) = s <= 1, without cancellation.
-double oneMinusCosFromSin(double s) { return s * s / (1.0 + std::sqrt(std::max(0.0, 1.0 - s * s))); }
-
-// The float nearest above x (the shader must sample a cone at least this wide).
-float floatAtLeast(double x) {
-  float f = float(x);
-  return double(f) < x ? std::nextafter(f, INFINITY) : f;
-}
-
-// Fills the record's aim fields for an aimable light and returns its largest
-// weight w_max; returns 1 (and leaves aimed = 0) when aiming would not help.
-double aimLight(const Light& light, const glm::dvec3& position, const glm::dvec3& axis, const glm::dvec3& tangent,
-                const glm::dvec3& bitangent, const AimTarget& target, device::LightRecord& record) {
-  constexpr double kSlack = double(SPECTRACE_AIM_SLACK);
-  const glm::dvec3 toCentre = target.centre - position;
-  const double distance = glm::length(toCentre);
-  switch (light.type) {
-    case LightType::Point:
-    case LightType::Spot: {
-      const double s = target.radius / distance + kSlack;
-      if (!(s < 1.0)) return 1.0;  // inside or at the sphere: nothing to gain
-      const float h = floatAtLeast(oneMinusCosFromSin(s));
-      const double emissionSpread = light.type == LightType::Point ? 2.0 : double(record.param0);
-      if (!(double(h) < emissionSpread)) return 1.0;
-      const glm::dvec3 coneAxis = toCentre / distance;
-      const glm::dvec3 coneTangent = perpendicular(coneAxis);
-      record.aimed = 1;
-      record.aimSpread = h;
-      record.aimAxis = toFloat(coneAxis);
-      record.aimTangent = toFloat(coneTangent);
-      record.aimBitangent = toFloat(glm::cross(coneAxis, coneTangent));
-      // Spot: sin^2 of the half angle the analog path samples (1 - cos = param0).
-      const double hs = double(record.param0);
-      record.aimAccept = float(hs * (2.0 - hs));
-      return double(h) / emissionSpread;
-    }
-    case LightType::Laser: {
-      // The beam runs along the axis, so only origins within the sphere's
-      // radius of its centre's projection onto the laser's plane can reach
-      // it; the slack covers the float rounding of origins and hit points.
-      const double slack = 1e-6 * (target.radius + glm::length(position) + glm::length(target.centre) + light.radiusM);
-      const float rho = floatAtLeast(target.radius + slack);
-      const double radius = double(record.param0);
-      if (!(double(rho) < radius)) return 1.0;
-      record.aimed = 1;
-      record.aimSpread = rho;
-      record.aimAxis = glm::vec3(float(glm::dot(toCentre, tangent)), float(glm::dot(toCentre, bitangent)), 0.0f);
-      record.aimAccept = float(radius * radius);
-      return (double(rho) * double(rho)) / (radius * radius);
-    }
-    case LightType::Disk:
-    case LightType::Rect: {
-      // The closest point of the emitter to the sphere's centre gives the
-      // widest cone, so the largest 2h.
-      const double normal = glm::dot(toCentre, axis);
-      const double u = glm::dot(toCentre, tangent), v = glm::dot(toCentre, bitangent);
-      double outside2 = 0.0;
-      if (light.type == LightType::Disk) {
-        const double beyond = std::max(0.0, std::hypot(u, v) - light.radiusM);
-        outside2 = beyond * beyond;
-      } else {
-        const double bu = std::max(0.0, std::abs(u) - 0.5 * light.sizeM.x);
-        const double bv = std::max(0.0, std::abs(v) - 0.5 * light.sizeM.y);
-        outside2 = bu * bu + bv * bv;
-      }
-      const double closest = std::sqrt(normal * normal + outside2);
-      const double s = target.radius / closest + kSlack;
-      if (!(s * s < 0.5)) return 1.0;  // some origins see a wide cone: leave it analog
-      // The shader evaluates 2h in float; 1e-4 covers that rounding.
-      const double largest = std::min(1.0, 2.0 * oneMinusCosFromSin(s) * (1.0 + 1e-4));
-      record.aimed = 1;
-      record.aimWeightScale = float(1.0 / largest);
-      return 1.0 / double(record.aimWeightScale);  // exactly the scale the shader uses
-    }
-  }
-  return 1.0;
-}
-
-// Where a traced light can put beams on the sensor, conservatively: its
-// emission points (corners of a convex region holding them, in the camera
-// frame), and for a laser its beam.
-struct LightReach {
-  std::vector<glm::dvec3> corners;
-  bool laser = false;
-  glm::dvec3 centre{0.0}, axis{0.0};
-  double radius = 0.0;
-};
-
-LightReach lightReach(const Light& light, const glm::dvec3& position, const glm::dvec3& axis, const glm::dvec3& tangent,
-                      const glm::dvec3& bitangent) {
-  LightReach reach;
-  reach.laser = light.type == LightType::Laser;
-  reach.centre = position;
-  reach.axis = axis;
-  reach.radius = light.radiusM;
-  double u = 0.0, v = 0.0;  // half extents along tangent, bitangent
-  if (light.type == LightType::Disk || light.type == LightType::Laser) u = v = light.radiusM;  // the disk's square
-  if (light.type == LightType::Rect) {
-    u = 0.5 * light.sizeM.x;
-    v = 0.5 * light.sizeM.y;
-  }
-  for (double su : {-1.0, 1.0})
-    for (double sv : {-1.0, 1.0}) reach.corners.push_back(position + tangent * (su * u) + bitangent * (sv * v));
-  return reach;
+  const double slack = double(SPECTRACE_AIM_SLACK);
+  if (camera.pinhole) return {{0.0, 0.0, camera.pinhole->distanceM}, camera.pinhole->radiusM, slack};
+  return {{0.0, 0.0, 0.0}, 0.5 * std::hypot(camera.sensorWidthM, camera.sensorHeightM), slack};
 }
 
 // Narrows the stored window (the whole sensor on entry) to the
@@ -241,7 +53,7 @@ void narrowPixelWindow(const Camera& camera, const std::vector<LightReach>& ligh
       lo -= blur;
       hi += blur;
     } else {
-      if (!light.laser || !(light.axis.z < 0.0)) return;
+      if (!light.collimated || !(light.axis.z < 0.0)) return;
       const double t = light.centre.z / -light.axis.z;
       const glm::dvec2 centre(light.centre.x + t * light.axis.x, light.centre.y + t * light.axis.y);
       const double extent = light.radius / -light.axis.z;
@@ -296,21 +108,23 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
   std::vector<LightReach> reaches;
   for (const Light& light : scene.lights) {
     LightSummary summary;
-    summary.label = fmt::format("{} ({}, {})", light.label, lightTypeName(light.type), light.spdLabel);
+    const LightTypeUnit& unit = lightTypeUnit(light.type);
+    summary.label = fmt::format("{} ({}, {})", light.label, unit.name, light.spdLabel);
     summary.powerW = light.powerW;
     const Spd clipped = light.spd.clipped(range.minNm, range.maxNm);
     const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
     summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
     summary.tracedPowerW = light.powerW * summary.inRangeShare;
     const glm::dvec3 axis = glm::normalize(frame.directionToLocal(light.direction));
-    glm::dvec3 tangent = light.type == LightType::Rect ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
+    glm::dvec3 tangent = unit.tangentFromUAxis ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
     tangent = glm::normalize(tangent - axis * glm::dot(tangent, axis));
     const glm::dvec3 bitangent = glm::cross(axis, tangent);
     const glm::dvec3 position = frame.pointToLocal(light.position);
+    const LightFrame local{position, axis, tangent, bitangent};
     if (!(summary.tracedPowerW > 0.0)) {
       summary.notTracedBecause = light.powerW > 0.0 ? "it has no power inside the spectrum range" : "its power is zero";
     } else if (options.skipUnreachableLights) {
-      summary.notTracedBecause = unreachableBecause(light, position, axis, tangent, bitangent, camera);
+      summary.notTracedBecause = unit.unreachableBecause(light, local, camera);
     }
     if (summary.notTracedBecause.empty()) {
       summary.traced = true;
@@ -325,32 +139,17 @@ TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptio
       record.axis = toFloat(axis);
       record.tangent = toFloat(tangent);
       record.bitangent = toFloat(bitangent);
-      switch (light.type) {
-        case LightType::Spot: {
-          // 1 - cos(a) = 2 sin^2(a/2): no cancellation for narrow cones.
-          const double half = light.coneHalfAngleDeg * M_PI / 180.0;
-          const double s = std::sin(0.5 * half);
-          record.param0 = float(2.0 * s * s);
-          break;
-        }
-        case LightType::Disk:
-        case LightType::Laser: record.param0 = float(light.radiusM); break;
-        case LightType::Rect:
-          record.param0 = float(light.sizeM.x);
-          record.param1 = float(light.sizeM.y);
-          break;
-        case LightType::Point: break;
-      }
-      if (options.aim) summary.largestWeight = aimLight(light, position, axis, tangent, bitangent, target, record);
+      unit.pack(light, record);
+      if (options.aim) summary.largestWeight = unit.aim(light, local, target, record);
       summary.aimed = record.aimed != 0;
       plan.lights.push_back(record);
-      reaches.push_back(lightReach(light, position, axis, tangent, bitangent));
+      reaches.push_back(unit.reach(light, local));
       // Selection in proportion to power x largest weight: each light's
       // weight ratios are then <= 1 and its beams share one scale.
       selectWeights.push_back(summary.tracedPowerW * summary.largestWeight);
       plan.tracedPowerW += summary.tracedPowerW;
       plan.sampledPowerW += summary.tracedPowerW * summary.largestWeight;
-      if (record.aimed && (light.type == LightType::Disk || light.type == LightType::Rect))
+      if (record.aimed && unit.aimedWeightsVary)
         plan.film.weightUnits = device::kWeightUnitsFractional;
     }
     if (!summary.traced) summary.tracedPowerW = 0.0;

@@ -1,0 +1,49 @@
+#pragma once
+// A light as a scene describes it (world coordinates in double, metres,
+// watts). What each type means, reads and packs is in its unit
+// (lights/light_type.h).
+#include <cstdint>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "device_shared.h"
+#include "spectrum/spd.h"
+
+namespace spectrace {
+
+// The device's numbering, so host and shaders cannot disagree.
+enum class LightType : uint32_t {
+  Point = device::kLightPoint,
+  Spot = device::kLightSpot,
+  Disk = device::kLightDisk,
+  Rect = device::kLightRect,
+  Laser = device::kLightLaser,
+};
+inline constexpr uint32_t kLightTypeCount = 5;
+static_assert(uint32_t(LightType::Laser) + 1 == kLightTypeCount, "light types are numbered 0.. without gaps");
+
+// "point", "spot", ... (the unit's name).
+const char* lightTypeName(LightType type);
+
+struct Light {
+  LightType type = LightType::Point;
+  std::string label;  // JSON pointer of the light, e.g. "/lights/2", for messages
+  // point/spot: `position`; laser: `origin`; disk/rect: `center`.
+  glm::dvec3 position{0.0};
+  // spot/laser: `direction`; disk/rect: `normal` (emitting side). Unit length.
+  glm::dvec3 direction{0.0, 0.0, 1.0};
+  // rect: unit vector along the first size component, perpendicular to
+  // `direction`. From "u_axis" when given, else the derived default.
+  glm::dvec3 uAxis{1.0, 0.0, 0.0};
+  double coneHalfAngleDeg = 0.0;  // spot: `cone_deg` is the half angle
+  double radiusM = 0.0;           // disk, laser
+  glm::dvec2 sizeM{0.0};          // rect: full width (along uAxis) and height
+  double powerW = 0.0;            // total radiant flux of the whole emission
+  std::string spdLabel;           // "D65", "blackbody 2700 K", "lamp.csv", ...
+  Spd spd;                        // resolved spectrum (relative units)
+  std::string name;               // optional "name" from the file; empty when absent
+};
+
+}  // namespace spectrace

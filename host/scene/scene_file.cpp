@@ -1,0 +1,216 @@
+// Scene files: the schema (which keys, of which JSON types, where), read
+// through json_fields; the value rules are validateScene's, which the loader
+// runs on what it read. Every problem becomes a SceneError "<file>: <json
+// pointer>: <what is wrong>"; nothing reaches the renderer unchecked (no NaN,
+// no zero-length axes, no silently ignored keys).
+//
+// Format summary (all lengths in metres, powers in watts, wavelengths in nm;
+// // and /* */ comments are tolerated):
+//   spectrum  {min_nm, max_nm, bins}                       optional
+//   observer  "CIE1931_2" | "CIE1964_10"                   optional
+//   camera    {position, look_at, up, sensor{width_m, height_m, pixels},
+//              pinhole{distance_m, radius_m}, exposure_s}  required
+//   lights    [ {type, name, power_w, spd, ...type fields} ] required, non-empty
+//   render    {beams, seed}                                optional
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+#include <openssl/evp.h>
+
+#include "json/json_fields.h"
+#include "lights/light_type.h"
+#include "scene/scene_limits.h"
+#include "scene/spd_field.h"
+#include "scene/validate_scene.h"
+
+namespace spectrace {
+
+std::string sceneSha256Hex(std::string_view bytes) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1)
+    throw SceneError("SHA-256 computation failed (OpenSSL EVP_Digest)");
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  out.reserve(2 * length);
+  for (unsigned int i = 0; i < length; ++i) {
+    out.push_back(hex[digest[i] >> 4]);
+    out.push_back(hex[digest[i] & 15]);
+  }
+  return out;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace jf = json_fields;
+using jf::Json;
+using jf::Keys;
+using jf::checkObject;
+using jf::child;
+using jf::describe;
+using jf::find;
+using jf::require;
+
+[[noreturn]] void raiseSceneError(const std::string& message) { throw SceneError(message); }
+
+jf::Source sourceFor(const fs::path& file) {
+  jf::Source c;
+  c.file = file.string();
+  c.dir = file.parent_path();
+  if (c.dir.empty()) c.dir = ".";
+  c.raise = raiseSceneError;
+  return c;
+}
+
+SpectrumRange parseSpectrum(const jf::Source& c, const Json& v, const std::string& p) {
+  checkObject(c, v, p, {"min_nm", "max_nm", "bins"}, "spectrum");
+  SpectrumRange s;
+  if (auto* x = find(v, "min_nm")) s.minNm = jf::getPositive(c, *x, child(p, "min_nm"));
+  if (auto* x = find(v, "max_nm")) s.maxNm = jf::getPositive(c, *x, child(p, "max_nm"));
+  if (auto* x = find(v, "bins")) s.bins = static_cast<int>(jf::getInt(c, *x, child(p, "bins"), 1, kMaxBins));
+  return s;
+}
+
+Camera parseCamera(const jf::Source& c, const Json& v, const std::string& p) {
+  checkObject(c, v, p, {"position", "look_at", "up", "sensor", "pinhole", "exposure_s"}, "camera");
+  Camera cam;
+  cam.position = jf::getPoint(c, require(c, v, p, "position"), child(p, "position"), kMaxCoordinateM);
+  cam.lookAt = jf::getPoint(c, require(c, v, p, "look_at"), child(p, "look_at"), kMaxCoordinateM);
+  if (auto* x = find(v, "up")) cam.up = jf::getDirection(c, *x, child(p, "up"));
+  if (auto* s = find(v, "sensor")) {
+    std::string sp = child(p, "sensor");
+    checkObject(c, *s, sp, {"width_m", "height_m", "pixels"}, "camera.sensor");
+    if (auto* x = find(*s, "width_m")) cam.sensorWidthM = jf::getLength(c, *x, child(sp, "width_m"), kMaxCoordinateM);
+    if (auto* x = find(*s, "height_m")) cam.sensorHeightM = jf::getLength(c, *x, child(sp, "height_m"), kMaxCoordinateM);
+    if (auto* x = find(*s, "pixels")) {
+      std::string pp = child(sp, "pixels");
+      if (!x->is_array() || x->size() != 2)
+        c.fail(pp, fmt::format("must be an array of 2 positive integers [width, height] (got {})", describe(*x)));
+      cam.pixelsX = static_cast<int>(jf::getInt(c, (*x)[0], child(pp, size_t(0)), 1, kMaxPixelsPerAxis));
+      cam.pixelsY = static_cast<int>(jf::getInt(c, (*x)[1], child(pp, size_t(1)), 1, kMaxPixelsPerAxis));
+    }
+  }
+  if (auto* h = find(v, "pinhole")) {
+    std::string hp = child(p, "pinhole");
+    checkObject(c, *h, hp, {"distance_m", "radius_m"}, "camera.pinhole");
+    Pinhole ph;
+    ph.distanceM = jf::getLength(c, require(c, *h, hp, "distance_m"), child(hp, "distance_m"), kMaxCoordinateM);
+    ph.radiusM = jf::getLength(c, require(c, *h, hp, "radius_m"), child(hp, "radius_m"), kMaxCoordinateM);
+    cam.pinhole = ph;
+  }
+  if (auto* x = find(v, "exposure_s")) cam.exposureS = jf::getPositive(c, *x, child(p, "exposure_s"));
+  return cam;
+}
+
+// The light type names, and every key some light type accepts (to name a
+// typo such as "typ" before complaining that "type" is missing).
+struct LightKeys {
+  Keys types;
+  Keys any = {"type", "name", "power_w", "spd"};
+};
+
+const LightKeys& lightKeys() {
+  static const LightKeys keys = [] {
+    LightKeys k;
+    for (const LightTypeUnit* unit : lightTypeUnits()) {
+      k.types.push_back(unit->name);
+      for (std::string_view key : unit->keys)
+        if (std::find(k.any.begin(), k.any.end(), key) == k.any.end()) k.any.push_back(key);
+    }
+    return k;
+  }();
+  return keys;
+}
+
+Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range) {
+  jf::Source c = outer;
+  if (!v.is_object()) c.fail(p, fmt::format("a light must be an object (got {})", describe(v)));
+  Light light;
+  light.label = p;
+  if (auto* n = find(v, "name")) {
+    light.name = jf::getString(c, *n, child(p, "name"));
+    c.note = fmt::format(" (light {})", jf::jsonQuoted(light.name));
+  }
+  const LightKeys& keys = lightKeys();
+  if (!find(v, "type")) checkObject(c, v, p, keys.any, "a light");
+  const Json& t = require(c, v, p, "type", fmt::format(" (one of: {})", jf::joinKeys(keys.types)));
+  std::string type = jf::getString(c, t, child(p, "type"));
+  const LightTypeUnit* unit = lightTypeUnitNamed(type);
+  if (!unit)
+    c.fail(child(p, "type"), fmt::format("unknown light type {}{} (valid types: {})", jf::jsonQuoted(type),
+                                         jf::suggestion(type, keys.types), jf::joinKeys(keys.types)));
+  light.type = unit->type;
+  Keys allowed = {"type", "name", "power_w", "spd"};
+  allowed.insert(allowed.end(), unit->keys.begin(), unit->keys.end());
+  checkObject(c, v, p, allowed, fmt::format("a {} light", type));
+  unit->parse(c, v, p, light);
+  light.powerW = jf::getNonNegative(c, require(c, v, p, "power_w", " (radiant flux in watts)"), child(p, "power_w"));
+  parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
+  return light;
+}
+
+RenderSettings parseRender(const jf::Source& c, const Json& v, const std::string& p) {
+  checkObject(c, v, p, {"beams", "seed"}, "render");
+  RenderSettings r;
+  if (auto* x = find(v, "beams")) r.beams = jf::getU64(c, *x, child(p, "beams"), 1);
+  if (auto* x = find(v, "seed")) r.seed = jf::getU64(c, *x, child(p, "seed"), 0);
+  return r;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& jsonText, const fs::path& file) {
+  const jf::Source c = sourceFor(file);
+  Json root = jf::parseJson(c, jsonText);
+  static const Keys kTop = {"spectrum", "observer", "camera", "lights", "render"};
+  if (!root.is_object()) c.fail("", fmt::format("the top level must be a JSON object (got {})", describe(root)));
+  checkObject(c, root, "", kTop, "the top level");
+
+  const SceneChecker checker{c.file, &root, /*requireEmission=*/true};
+  Scene scene;
+  scene.sourcePath = file;
+  if (auto* x = find(root, "spectrum")) scene.spectrum = parseSpectrum(c, *x, "/spectrum");
+  validateSpectrum(scene.spectrum, checker);  // the lights' spectra are built over it
+  if (auto* x = find(root, "observer")) {
+    static const Keys kObservers = {"CIE1931_2", "CIE1964_10"};
+    std::string obs = jf::getString(c, *x, "/observer");
+    if (std::find(kObservers.begin(), kObservers.end(), obs) == kObservers.end())
+      c.fail("/observer", fmt::format("unknown observer {}{} (valid: {})", jf::jsonQuoted(obs),
+                                      jf::suggestion(obs, kObservers), jf::joinKeys(kObservers)));
+    scene.observer = obs;
+  }
+  scene.camera = parseCamera(c, require(c, root, "", "camera"), "/camera");
+
+  const Json& lights = require(c, root, "", "lights");
+  if (!lights.is_array() || lights.empty())
+    c.fail("/lights", fmt::format("must be a non-empty array of lights (got {})", describe(lights)));
+  for (size_t i = 0; i < lights.size(); ++i)
+    scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
+
+  if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
+  scene.sourceSha256 = sceneSha256Hex(jsonText);
+  validateScene(scene, checker);
+  return scene;
+}
+
+Scene loadScene(const fs::path& file) {
+  const jf::Source c = sourceFor(file);
+  std::error_code ec;
+  auto status = fs::status(file, ec);
+  if (!fs::exists(status)) c.fail("", "scene file not found");
+  if (fs::is_directory(status)) c.fail("", "is a directory, not a scene file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) c.fail("", fmt::format("cannot open the scene file ({})", std::strerror(errno)));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) c.fail("", "error while reading the scene file");
+  return parseScene(text, file);
+}
+
+}  // namespace spectrace

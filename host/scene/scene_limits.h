@@ -1,0 +1,16 @@
+#pragma once
+// Bounds on scene values, enforced by validateScene (and named in the
+// loader's messages), so files and scenes built in code get the same.
+#include <cstdint>
+
+#include "camera/world_limits.h"
+
+namespace spectrace {
+
+inline constexpr int kMaxPixelsPerAxis = 65535;
+inline constexpr int64_t kMaxPixelsTotal = int64_t(1) << 28;
+inline constexpr int kMaxBins = 100000;
+inline constexpr double kMaxWavelengthNm = 100000.0;  // 0.1 mm; keeps spectral tables finite
+inline constexpr double kMaxKelvin = 1e6;  // hotter than any star; keeps Planck's law finite
+
+}  // namespace spectrace
