@@ -574,6 +574,53 @@ TEST_F(SceneTest, ArbitraryValuesNeverEscapeAsOtherErrors) {
   EXPECT_GT(rejected, 0);
 }
 
+// validateScene holds the loader's limits, so a scene built in code cannot
+// pass values a file could not.
+TEST_F(SceneTest, ScenesBuiltInCodeGetTheLoadersLimits) {
+  const Scene base = load(exampleScene());
+  EXPECT_NO_THROW(validateScene(base));
+  auto errorOfScene = [](const Scene& s) {
+    try {
+      validateScene(s);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  struct Case {
+    const char* what;
+    void (*mutate)(Scene&);
+    const char* phrase;
+  };
+  const Case cases[] = {
+      {"far light", [](Scene& s) { s.lights[0].position.z = 1e13; }, "/lights/0/position/2: must be a coordinate"},
+      {"far camera", [](Scene& s) { s.camera.lookAt.x = -1e300; }, "/camera/look_at/0: must be a coordinate"},
+      {"huge disk", [](Scene& s) { s.lights[2].radiusM = 1e20; }, "/lights/2/radius_m: must be a length"},
+      {"huge rect", [](Scene& s) { s.lights[3].sizeM.y = 1e13; }, "/lights/3/size_m/1: must be a length"},
+      {"tiny rect", [](Scene& s) { s.lights[3].sizeM = {1e-200, 1e-200}; }, "/lights/3/size_m: the rect's area"},
+      {"rect u_axis", [](Scene& s) { s.lights[3].uAxis = {0.0, 0.0, 2.0}; }, "/lights/3/u_axis: [0, 0, 2] is parallel"},
+      {"wide cone", [](Scene& s) { s.lights[1].coneHalfAngleDeg = 180.5; }, "/lights/1/cone_deg: must be a half angle"},
+      {"long waves", [](Scene& s) { s.spectrum.maxNm = 1e12; }, "/spectrum/max_nm: must be at most 100000 nm"},
+      {"many bins", [](Scene& s) { s.spectrum.bins = 100001; }, "/spectrum/bins: must be an integer in 1..100000"},
+      {"wide sensor", [](Scene& s) { s.camera.pixelsX = 65536; }, "/camera/sensor/pixels/0: must be an integer"},
+      {"many pixels", [](Scene& s) { s.camera.pixelsX = s.camera.pixelsY = 65535; }, "too many pixels"},
+      {"up along view", [](Scene& s) { s.camera.up = {0.0, 0.0, 3.0}; }, "/camera/up: [0, 0, 3] is parallel"},
+      {"no exposure", [](Scene& s) { s.camera.exposureS = 0.0; }, "/camera/exposure_s: must be a finite number > 0"},
+  };
+  for (const Case& c : cases) {
+    Scene s = base;
+    s.sourcePath.clear();
+    c.mutate(s);
+    const std::string message = errorOfScene(s);
+    EXPECT_EQ(message.rfind("<scene>: ", 0), 0u) << c.what << ": " << message;
+    EXPECT_NE(message.find(c.phrase), std::string::npos) << c.what << ": " << message;
+  }
+  // Dark lights are the trace plan's business in code, a file's error.
+  Scene dark = base;
+  for (Light& l : dark.lights) l.powerW = 0.0;
+  EXPECT_NO_THROW(validateScene(dark));
+}
+
 TEST_F(SceneTest, AllSceneFilesInTheRepositoryParse) {
   fs::path root = fs::path(SPECTRACE_SOURCE_DIR) / "scenes";
   int count = 0;
