@@ -10,7 +10,7 @@
 #include <string>
 
 #include "kernel/beam_kernel.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "support/render_comparison.h"
 #include "support/test_scenes.h"
@@ -67,7 +67,7 @@ Scene aimScene(LightType type, bool pinhole) {
   return scene;
 }
 
-testing::PixelEstimates renderOnGpu(const TracePlan& plan, uint64_t beams) {
+testing::PixelEstimates renderOnGpu(const CompiledScene& plan, uint64_t beams) {
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, beams);
   return testing::pixelEstimates(gpu.download(), plan, beams);
@@ -83,13 +83,13 @@ class AimedVersusAnalog : public ::testing::TestWithParam<AimCase> {};
 TEST_P(AimedVersusAnalog, SameExpectedImage) {
   const AimCase c = GetParam();
   const Scene scene = aimScene(c.type, c.pinhole);
-  TracePlanOptions analogOptions;
+  CompileOptions analogOptions;
   analogOptions.aim = false;
-  const TracePlan aimed = buildTracePlan(scene, 101);
-  const TracePlan analog = buildTracePlan(scene, 202, analogOptions);
-  ASSERT_EQ(aimed.lights.size(), 1u);
-  EXPECT_EQ(aimed.lights[0].aimed, 1u) << "the scene is meant to be aimed";
-  EXPECT_EQ(analog.lights[0].aimed, 0u);
+  const CompiledScene aimed = compileScene(scene, 101);
+  const CompiledScene analog = compileScene(scene, 202, analogOptions);
+  ASSERT_EQ(aimed.device.lights.size(), 1u);
+  EXPECT_EQ(aimed.device.lights[0].aimed, 1u) << "the scene is meant to be aimed";
+  EXPECT_EQ(analog.device.lights[0].aimed, 0u);
   EXPECT_EQ(analog.sampledPowerW, analog.tracedPowerW);
   // Area lights carry varying weights; the others weights of 1 or 0.
   const bool area = c.type == LightType::Disk || c.type == LightType::Rect;
@@ -127,10 +127,10 @@ TEST(AimedSampling, MixedLightsKeepTheirSharesOfTheImage) {
   scene.lights.push_back(pointLight({-0.001, 0.0, 0.025}, 0.05, *cieIlluminant("A")));
   scene.lights.push_back(lightOfType(LightType::Rect));
   scene.lights.back().position.z += 0.01;
-  TracePlanOptions analogOptions;
+  CompileOptions analogOptions;
   analogOptions.aim = false;
-  const TracePlan aimed = buildTracePlan(scene, 303);
-  const TracePlan analog = buildTracePlan(scene, 404, analogOptions);
+  const CompiledScene aimed = compileScene(scene, 303);
+  const CompiledScene analog = compileScene(scene, 404, analogOptions);
   const auto a = renderOnGpu(aimed, 2'000'000);
   const auto b = renderOnGpu(analog, 24'000'000);
   const auto comparison = testing::compareRenders(a, b, "three lights, pinhole: aimed vs analog");
@@ -146,7 +146,7 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   // 5 (sqrt(n) / 2) (1 / Y + 1 / B) relative.
   Scene scene = aimScene(LightType::Disk, true);
   scene.lights[0].spd = makeLineSpd(550.0);
-  const TracePlan plan = buildTracePlan(scene, 505);
+  const CompiledScene plan = compileScene(scene, 505);
   ASSERT_TRUE(plan.film.weighted());
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, 1'000'000);
@@ -155,7 +155,7 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
   const double units = double(h.total());
   ASSERT_GT(h.countedBeams, 10'000u);
-  const float ybar = device::BeamKernel(plan.constants, plan.lights, plan.intervals, plan.cmfTable).cmfAtWavelength(550.0f).y;
+  const float ybar = device::BeamKernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.cmfTable).cmfAtWavelength(550.0f).y;
   const double expected = double(ybar) * device::kColourFixedPointScale / device::kWeightUnitsFractional;
   const double tolerance = 2.5 * std::sqrt(double(h.countedBeams)) * (1.0 / y + 1.0 / units);
   std::printf("Y sum / bin sum = %.9f, ybar(550) / 16 = %.9f (tolerance %.2g relative)\n", y / units, expected, tolerance);

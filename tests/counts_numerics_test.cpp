@@ -21,7 +21,7 @@
 #include "support/cpu_trace.h"
 #include "film/develop.h"
 #include "camera/camera_frame.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "rng/philox.h"
@@ -46,7 +46,7 @@ constexpr uint64_t k2To40 = uint64_t(1) << 40;
 
 class PresetTrace {
  public:
-  PresetTrace(const TracePlan& plan, const SpectralHistogram& preset) : tracer_(testing::sharedVulkan(), plan) {
+  PresetTrace(const CompiledScene& plan, const SpectralHistogram& preset) : tracer_(testing::sharedVulkan(), plan) {
     tracer_.upload(preset);
   }
   void trace(uint64_t firstBeam, uint32_t count) { tracer_.trace(firstBeam, count); }
@@ -81,7 +81,7 @@ Scene fourLaserScene() {
 }
 
 // The plan's shape, all zero.
-SpectralHistogram emptyHistogram(const TracePlan& plan) {
+SpectralHistogram emptyHistogram(const CompiledScene& plan) {
   return SpectralHistogram(plan.film.pixelsX, plan.film.pixelsY, plan.film.bins, plan.film.exactColour);
 }
 
@@ -89,7 +89,7 @@ SpectralHistogram emptyHistogram(const TracePlan& plan) {
 // 2^64 - 2^40; their pixels' colour sums (if any) just below 2^32 and
 // 2^63 and at 2^64 - 2^46 (each hit adds < 2^22 there); and cells no beam
 // reaches at awkward values, which must come back unchanged.
-SpectralHistogram presetHistogram(const TracePlan& plan, const SpectralHistogram& hits) {
+SpectralHistogram presetHistogram(const CompiledScene& plan, const SpectralHistogram& hits) {
   SpectralHistogram preset = emptyHistogram(plan);
   const uint64_t countPresets[] = {(uint64_t(1) << 31) - 700, k2To32 - 1000, k2To40 - 1000, UINT64_MAX - k2To40 + 1};
   const uint64_t colourPresets[] = {k2To32 - 12345, (uint64_t(1) << 63) - 999, UINT64_MAX - (uint64_t(1) << 46) + 1};
@@ -142,7 +142,7 @@ void expectExactSum(const SpectralHistogram& result, const SpectralHistogram& pr
 // 2^32 - preset added, which the presets just below 2^32 guarantee.
 TEST(CountsNumerics, DeviceCountersStayExactPast2To32) {
   const Scene scene = fourLaserScene();
-  const TracePlan plan = buildTracePlan(scene, 31);
+  const CompiledScene plan = compileScene(scene, 31);
   // Two dispatches, so each counter crosses its limit partly within one
   // dispatch and partly between them.
   constexpr uint64_t kFirst = 1000;
@@ -191,7 +191,7 @@ TEST(CountsNumerics, DeviceCountersStayExactPast2To32) {
 
 TEST(CountsNumerics, CpuReferenceCountersStayExactPast2To32) {
   const Scene scene = fourLaserScene();
-  const TracePlan plan = buildTracePlan(scene, 32);
+  const CompiledScene plan = compileScene(scene, 32);
   constexpr uint64_t kFirst = 77, kBeams = 400'000;
   CpuTraceOptions options;
   options.threads = 4;  // contended atomics even on a small machine
@@ -212,7 +212,7 @@ TEST(CountsNumerics, CpuReferenceCountersStayExactPast2To32) {
 // Presetting through Tracer::upload, then tracing on the Vulkan tracer.
 TEST(CountsNumerics, GpuTracerCountersStayExactPast2To32) {
   const Scene scene = fourLaserScene();
-  const TracePlan plan = buildTracePlan(scene, 33);
+  const CompiledScene plan = compileScene(scene, 33);
   constexpr uint64_t kFirst = 5, kBeams = 200'000;
   SpectralHistogram hits;
   traceOnCpu(plan, kFirst, kBeams, hits);
@@ -261,7 +261,7 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
   const Scene scene = diskOverSensorScene();
   constexpr uint32_t kCount = 1'000'000;
   constexpr uint64_t kSeed = 41;
-  const TracePlan plan = buildTracePlan(scene, kSeed);
+  const CompiledScene plan = compileScene(scene, kSeed);
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   const auto base = gpu.traceRecorded(0, kCount);
 
@@ -291,10 +291,10 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
                           {"index + 2^32 - 1", k2To32 - 1, kSeed},
                           {"seed + 2^32", 0, kSeed + k2To32}};
   for (const Shift& s : shifts) {
-    const TracePlan shiftedPlan = buildTracePlan(scene, s.seed);
+    const CompiledScene shiftedPlan = compileScene(scene, s.seed);
     VulkanTracer shiftedGpu(testing::sharedVulkan(), shiftedPlan);
     const auto shifted = shiftedGpu.traceRecorded(s.firstBeam, kCount);
-    device::BeamKernel cpu(shiftedPlan.constants, shiftedPlan.lights, shiftedPlan.intervals);
+    device::BeamKernel cpu(shiftedPlan.device.constants, shiftedPlan.device.lights, shiftedPlan.device.intervals);
     uint64_t same = 0, cpuDiffers = 0;
     for (uint32_t i = 0; i < kCount; ++i) {
       if (base[i].pixel != device::kBeamMissed && testing::sameRecord(base[i], shifted[i])) ++same;
@@ -359,7 +359,7 @@ TEST(CountsNumerics, RendersAtBeamIndicesNear2To32And2To40) {
   constexpr uint64_t kBeams = 8'000'000;
   Scene scene = testing::bareSensorScene(0.036, 0.024, 48, 32, 16);
   scene.lights = {pointLight({0.004, -0.003, 0.012}, 2.0, *cieIlluminant("D65"))};
-  const TracePlan plan = buildTracePlan(scene, 2718);
+  const CompiledScene plan = compileScene(scene, 2718);
   struct Start {
     const char* name;
     uint64_t firstBeam;

@@ -7,7 +7,7 @@
 
 #include "kernel/beam_kernel.h"
 #include "support/cpu_trace.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
@@ -43,9 +43,9 @@ Scene mixedScene(bool pinhole) {
 
 void compareBeamByBeam(const Scene& scene, uint64_t firstBeam, uint32_t count, const char* name, uint64_t minHits,
                        bool aim = true) {
-  TracePlanOptions options;
+  CompileOptions options;
   options.aim = aim;
-  const TracePlan plan = buildTracePlan(scene, 12345, options);
+  const CompiledScene plan = compileScene(scene, 12345, options);
   const testing::BeamAgreement agreement = testing::beamByBeam(plan, firstBeam, count, name);
   EXPECT_GT(agreement.hits, minHits) << "the scene should put many beams on the sensor";
   // The requirement is 99.99%; the shared code and NoContraction aim at 100%.
@@ -72,7 +72,7 @@ TEST(CpuGpuAgreement, BeamIndicesNear2To32And2To40) {
 
 TEST(CpuGpuAgreement, HistogramsOfARenderAgree) {
   const Scene scene = mixedScene(false);
-  const TracePlan plan = buildTracePlan(scene, 777);
+  const CompiledScene plan = compileScene(scene, 777);
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, 3'000'000);
   const SpectralHistogram fromGpu = gpu.download();
@@ -104,7 +104,7 @@ TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {
   // A real render whose histogram spans two chunks equals the CPU's.
   Scene scene = testing::bareSensorScene(0.1, 0.1, 600, 600, 64);
   scene.lights = {pointLight({0.0, 0.0, 0.05}, 1.0, *cieIlluminant("D65"))};
-  const TracePlan plan = buildTracePlan(scene, 3);
+  const CompiledScene plan = compileScene(scene, 3);
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   ASSERT_EQ(gpu.split().chunkCount, 2u);
   gpu.trace(0, 2'000'000);

@@ -4,7 +4,7 @@
 //    camera 1.7e5 m from the world origin in a scene 1e4 m across;
 //  - angles: lasers at 1e-6 ... 1e-30 rad to the sensor plane, beams exactly
 //    parallel to it, lights behind it, a pinhole of radius 1e-7 m;
-//  - degenerate inputs: the library path (buildTracePlan,
+//  - degenerate inputs: the library path (compileScene,
 //    CameraFrame::fromCamera) must throw SceneError naming the problem
 //    rather than put NaN into the device tables.
 // A pixel's count is binomial(N, p) with p from exact geometry (pixel solid
@@ -27,7 +27,7 @@
 #include "kernel/beam_kernel.h"
 #include "support/cpu_trace.h"
 #include "film/develop.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/statistics.h"
@@ -95,7 +95,7 @@ struct GpuRun {
   RenderImage image;  // resolved on the device
 };
 
-GpuRun traceOnGpu(const Scene& scene, const TracePlan& plan, uint64_t firstBeam, uint64_t beams) {
+GpuRun traceOnGpu(const Scene& scene, const CompiledScene& plan, uint64_t firstBeam, uint64_t beams) {
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(firstBeam, beams);
   GpuRun run;
@@ -128,7 +128,7 @@ struct MatchStats {
 // How much likelier an aimed beam is to be counted than an analog one:
 // tracedPowerW / sampledPowerW, for plans whose beams all have weight ratio
 // 1 (counts are then plain hits: point, spot and laser lights).
-double aimGain(const TracePlan& plan) {
+double aimGain(const CompiledScene& plan) {
   EXPECT_FALSE(plan.film.weighted()) << "these checks count hits; weighted plans need their weights";
   return plan.tracedPowerW / plan.sampledPowerW;
 }
@@ -198,7 +198,7 @@ MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& c
 
 // Traces beams [firstBeam, firstBeam + count) on both devices and compares
 // their (pixel, bin) beam by beam. Returns the share that agrees.
-double beamByBeamAgreement(const TracePlan& plan, uint64_t firstBeam, uint32_t count, const std::string& name,
+double beamByBeamAgreement(const CompiledScene& plan, uint64_t firstBeam, uint32_t count, const std::string& name,
                            uint64_t* hitsOut = nullptr) {
   const testing::BeamAgreement agreement = testing::beamByBeam(plan, firstBeam, count, name);
   if (hitsOut) *hitsOut = agreement.hits;
@@ -209,7 +209,7 @@ double beamByBeamAgreement(const TracePlan& plan, uint64_t firstBeam, uint32_t c
 // the CPU against beams * gain * p(pixel), the GPU's resolved image finite,
 // and the two devices beam by beam on the first `agreementBeams`. Returns
 // the GPU's statistics.
-MatchStats expectCountsMatchOnBothDevices(const Scene& scene, const TracePlan& plan, uint64_t beams,
+MatchStats expectCountsMatchOnBothDevices(const Scene& scene, const CompiledScene& plan, uint64_t beams,
                                           const std::function<double(const PixelRect&)>& probability,
                                           const std::string& name, uint32_t agreementBeams) {
   const GpuRun run = traceOnGpu(scene, plan, 0, beams);
@@ -251,7 +251,7 @@ TEST(GeometryNumericsScale, SpotAMillionMetresFromAMillimetreSensor) {
   constexpr uint64_t kBeams = 8'000'000;
   Scene scene = bareSensor(1e-3, 1e-3, 16, 16);
   scene.lights = {spotLight({0.0, 0.0, kDistance}, {0.0, 0.0, -1.0}, kHalfAngle)};
-  const TracePlan plan = buildTracePlan(scene, 11);
+  const CompiledScene plan = compileScene(scene, 11);
   const glm::dvec3 light = CameraFrame::fromCamera(scene.camera).pointToLocal(scene.lights[0].position);
   const double coneSolidAngle = 2.0 * M_PI * oneMinusCos(kHalfAngle);
   ASSERT_LT(std::hypot(0.5e-3, 0.5e-3) / kDistance, std::tan(kHalfAngle)) << "the cone must cover the sensor";
@@ -269,7 +269,7 @@ TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
   constexpr uint64_t kBeams = 8'000'000;
   Scene scene = bareSensor(1e-3, 1e-3, 16, 16);
   scene.lights = {laserLight({1e-4, -5e-5, 1e6}, {0.0, 0.0, -1.0}, kRadius)};
-  const TracePlan plan = buildTracePlan(scene, 12);
+  const CompiledScene plan = compileScene(scene, 12);
   const glm::dvec3 centre = CameraFrame::fromCamera(scene.camera).pointToLocal(scene.lights[0].position);
   auto probability = [&](const PixelRect& r) {
     // Every corner must lie inside the disk (true for this layout).
@@ -286,7 +286,7 @@ TEST(GeometryNumericsScale, MicrometrePixels) {
   constexpr uint64_t kBeams = 16'000'000;
   Scene scene = bareSensor(64e-6, 64e-6, 64, 64);
   scene.lights = {pointLight({3e-6, -7e-6, 50e-6}, 1.0, makeLineSpd(550.0))};
-  const TracePlan plan = buildTracePlan(scene, 13);
+  const CompiledScene plan = compileScene(scene, 13);
   const glm::dvec3 light = CameraFrame::fromCamera(scene.camera).pointToLocal(scene.lights[0].position);
   auto probability = [&](const PixelRect& r) {
     return rectangleSolidAngle(r.x1, r.x2, r.y1, r.y2, light.x, light.y, light.z) / (4.0 * M_PI);
@@ -338,11 +338,11 @@ TEST(GeometryNumericsScale, CameraFarFromTheOriginMatchesTheSameSetupAtTheOrigin
     const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
     const glm::dvec3 roundTrip = frame.pointToLocal(scene.lights[0].position);
     EXPECT_LT(glm::length(roundTrip - nearLocal), 1e-9) << c.name << ": the camera frame loses precision";
-    const TracePlan plan = buildTracePlan(scene, 14);
+    const CompiledScene plan = compileScene(scene, 14);
     // The float light position in the device table is the camera-frame one.
-    EXPECT_NEAR(plan.lights[0].position.x, nearLocal.x, 1e-8) << c.name;
-    EXPECT_NEAR(plan.lights[0].position.y, nearLocal.y, 1e-8) << c.name;
-    EXPECT_NEAR(plan.lights[0].position.z, nearLocal.z, 1e-8) << c.name;
+    EXPECT_NEAR(plan.device.lights[0].position.x, nearLocal.x, 1e-8) << c.name;
+    EXPECT_NEAR(plan.device.lights[0].position.y, nearLocal.y, 1e-8) << c.name;
+    EXPECT_NEAR(plan.device.lights[0].position.z, nearLocal.z, 1e-8) << c.name;
     const GpuRun run = traceOnGpu(scene, plan, 0, kBeams);
     expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, std::string(c.name) + " (GPU)");
     expectFiniteImage(run.image, c.name);
@@ -403,8 +403,8 @@ TEST(GeometryNumericsAngles, GrazingLaserMatchesItsEllipticFootprint) {
   for (double eps : {1e-6, 1e-12, 1e-20, 1e-30}) {
     const std::string name = format("laser at %g rad to the sensor", eps);
     const GrazingSetup g = grazingLaser(eps);
-    const TracePlan plan = buildTracePlan(g.scene, 21);
-    ASSERT_TRUE(finiteRecord(plan.lights[0])) << name;
+    const CompiledScene plan = compileScene(g.scene, 21);
+    ASSERT_TRUE(finiteRecord(plan.device.lights[0])) << name;
     auto probability = [&](const PixelRect& r) {
       if (!(r.y1 <= g.hit.y && g.hit.y < r.y2)) return 0.0;
       return diskShareBelow((r.x2 - g.hit.x) / g.footprintHalfLength) -
@@ -422,7 +422,7 @@ TEST(GeometryNumericsAngles, SubnormalGrazingAngleStaysFinite) {
   // outside the footprint's pixel row.
   constexpr uint64_t kBeams = 200'000;
   const GrazingSetup g = grazingLaser(1e-39);
-  const TracePlan plan = buildTracePlan(g.scene, 22);
+  const CompiledScene plan = compileScene(g.scene, 22);
   const GpuRun run = traceOnGpu(g.scene, plan, 0, kBeams);
   const auto counts = pixelCounts(run.histogram);
   uint64_t hits = 0, outsideRow = 0;
@@ -456,12 +456,12 @@ TEST(GeometryNumericsAngles, BeamsParallelToTheSensorNeverCount) {
       laserLight(worldPoint(frame, {-1e-3, 0.0, 0.0}), worldDirection(frame, {1.0, 0.0, 0.0}), 1e-3),
       laserLight(worldPoint(frame, {0.0, 1e-3, 1e-6}), worldDirection(frame, {0.0, -1.0, 0.0}), 1e-6)};
   // By default such lights are never sampled: none can reach the sensor.
-  EXPECT_THROW(buildTracePlan(scene, 23), SceneError);
+  EXPECT_THROW(compileScene(scene, 23), SceneError);
   // Traced anyway, the shader maths must count nothing and never divide by 0.
-  TracePlanOptions traceAll;
+  CompileOptions traceAll;
   traceAll.skipUnreachableLights = false;
-  const TracePlan plan = buildTracePlan(scene, 23, traceAll);
-  for (const auto& record : plan.lights) {
+  const CompiledScene plan = compileScene(scene, 23, traceAll);
+  for (const auto& record : plan.device.lights) {
     ASSERT_TRUE(finiteRecord(record));
     ASSERT_EQ(record.axis.z, 0.0f);
   }
@@ -495,10 +495,10 @@ TEST(GeometryNumericsAngles, LightsBehindTheSensorNeverCount) {
   pinhole.lights.push_back(pointLight({0.0, 0.0, 0.01}, 1.0, makeLineSpd(500.0)));
   for (const Scene* scene : {&bare, &pinhole}) {
     const char* name = scene == &bare ? "behind a bare sensor" : "behind a pinhole";
-    EXPECT_THROW(buildTracePlan(*scene, 24), SceneError) << name << ": the default skips every light here";
-    TracePlanOptions traceAll;
+    EXPECT_THROW(compileScene(*scene, 24), SceneError) << name << ": the default skips every light here";
+    CompileOptions traceAll;
     traceAll.skipUnreachableLights = false;
-    const TracePlan plan = buildTracePlan(*scene, 24, traceAll);
+    const CompiledScene plan = compileScene(*scene, 24, traceAll);
     const GpuRun run = traceOnGpu(*scene, plan, 0, kBeams);
     EXPECT_EQ(run.histogram.total(), 0u) << name;
     expectFiniteImage(run.image, name);
@@ -523,10 +523,10 @@ TEST(GeometryNumericsAngles, PinholeOfRadius1e7Metres) {
     Scene scene = bareSensor(0.024, 0.024, 16, 16);
     scene.camera.pinhole = Pinhole{kAperture, kRadius};
     scene.lights = {pointLight({0.0, 0.0, kAperture + c.heightAboveAperture}, 1.0, makeLineSpd(550.0))};
-    const TracePlan plan = buildTracePlan(scene, 25);
-    const double d = double(plan.lights[0].position.z) - double(plan.constants.apertureDistance);
+    const CompiledScene plan = compileScene(scene, 25);
+    const double d = double(plan.device.lights[0].position.z) - double(plan.device.constants.apertureDistance);
     ASSERT_EQ(d, c.heightAboveAperture) << "the light height should be exact in float";
-    const double r2 = double(plan.constants.apertureRadiusSq);
+    const double r2 = double(plan.device.constants.apertureRadiusSq);
     const double root = std::sqrt(d * d + r2);
     const double p = aimGain(plan) * r2 / (2.0 * root * (root + d));
     const double n = double(c.beams);
@@ -573,14 +573,14 @@ std::string describeRecord(const device::LightRecord& r) {
   return text;
 }
 
-// Expects buildTracePlan(scene) to throw SceneError whose message contains
+// Expects compileScene(scene) to throw SceneError whose message contains
 // one of `words`.
 void expectPlanRejected(const Scene& scene, std::initializer_list<const char*> words, const std::string& what) {
   try {
-    const TracePlan plan = buildTracePlan(scene, 1);
+    const CompiledScene plan = compileScene(scene, 1);
     std::string records;
-    for (const auto& r : plan.lights) records += "\n    " + describeRecord(r);
-    ADD_FAILURE() << what << ": buildTracePlan accepted it silently; device light records:" << records;
+    for (const auto& r : plan.device.lights) records += "\n    " + describeRecord(r);
+    ADD_FAILURE() << what << ": compileScene accepted it silently; device light records:" << records;
   } catch (const SceneError& e) {
     const std::string message = e.what();
     bool named = false;

@@ -145,7 +145,7 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
   panel.radiusM = 0.02;
   aimedPanel.lights = {panel};  // aimed, with fractional weights
   scenes.push_back(aimedPanel);
-  ASSERT_TRUE(buildTracePlan(aimedPanel, 1).film.weighted());
+  ASSERT_TRUE(compileScene(aimedPanel, 1).film.weighted());
   for (bool exactColour : {true, false}) {
     for (const Scene& scene : scenes) {
       RenderOptions options;
@@ -193,7 +193,7 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
     Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.01}, {0, 0, -1}, 1.0, c.spd);
     disk.radiusM = 0.005;
     scene.lights = {disk};
-    const TracePlan trimmed = buildTracePlan(scene, 1);
+    const CompiledScene trimmed = compileScene(scene, 1);
     EXPECT_LE(trimmed.film.storedBins, c.maxStoredBins) << c.name;
     for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
       RenderOptions options;
@@ -248,7 +248,7 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     cases.push_back({"pinhole: disk straddling the aperture plane", s, false});
   }
   for (const auto& c : cases) {
-    const TracePlan plan = buildTracePlan(c.scene, 1);
+    const CompiledScene plan = compileScene(c.scene, 1);
     std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.film.storedPixelCount(),
                 (unsigned long long)plan.film.pixelCount());
     EXPECT_EQ(plan.film.storedPixelCount() < plan.film.pixelCount(), c.smaller) << c.name;

@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "film/develop.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/render_comparison.h"
@@ -47,9 +47,9 @@ Scene sceneWithUnreachableLights(bool pinhole) {
 }
 
 TEST(SkipUnreachableLights, AreNeverSampledAndSayWhy) {
-  const TracePlan plan = buildTracePlan(sceneWithUnreachableLights(false), 1);
+  const CompiledScene plan = compileScene(sceneWithUnreachableLights(false), 1);
   ASSERT_EQ(plan.summaries.size(), 7u);
-  EXPECT_EQ(plan.lights.size(), 2u);
+  EXPECT_EQ(plan.device.lights.size(), 2u);
   const char* expected[] = {"", "behind the sensor plane", "", "faces away", "points away", "misses the sensor",
                             "no power inside the spectrum range"};
   for (size_t i = 0; i < 7; ++i) {
@@ -61,7 +61,7 @@ TEST(SkipUnreachableLights, AreNeverSampledAndSayWhy) {
   EXPECT_NEAR(plan.tracedPowerW, plan.summaries[0].tracedPowerW + plan.summaries[2].tracedPowerW, 1e-12);
 }
 
-testing::PixelEstimates renderPlan(const TracePlan& plan, uint64_t beams) {
+testing::PixelEstimates renderPlan(const CompiledScene& plan, uint64_t beams) {
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, beams);
   return testing::pixelEstimates(gpu.download(), plan, beams);
@@ -69,11 +69,11 @@ testing::PixelEstimates renderPlan(const TracePlan& plan, uint64_t beams) {
 
 void expectSameExpectation(bool pinhole, int minCells) {
   const Scene scene = sceneWithUnreachableLights(pinhole);
-  TracePlanOptions unskipped;
+  CompileOptions unskipped;
   unskipped.skipUnreachableLights = false;
   const uint64_t beams = 4'000'000;
-  const auto skipped = renderPlan(buildTracePlan(scene, 11), beams);
-  const auto all = renderPlan(buildTracePlan(scene, 12, unskipped), beams);
+  const auto skipped = renderPlan(compileScene(scene, 11), beams);
+  const auto all = renderPlan(compileScene(scene, 12, unskipped), beams);
   const auto comparison =
       testing::compareRenders(skipped, all, pinhole ? "pinhole, skipped vs all" : "bare, skipped vs all");
   ASSERT_GT(comparison.cells, minCells);

@@ -9,18 +9,18 @@
 
 namespace spectrace {
 
-CpuTracer::CpuTracer(const TracePlan& plan, unsigned threads)
+CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
       counters_(plan.film.storedCounterCount(), 0) {
   // One chunk holds every stored pixel.
-  plan_.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
+  plan_.device.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
 }
 
 std::string CpuTracer::deviceName() const { return fmt::format("CPU reference, {} threads", threads_); }
 
 uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
-  const device::BeamKernel kernel(plan_.constants, plan_.lights, plan_.intervals, plan_.cmfTable, counters_);
+  const device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.cmfTable, counters_);
   std::atomic<uint64_t> counted{0};
   // Threads take blocks of beams in order. When cancelled, each finishes
   // its block, so the traced beams stay one contiguous prefix.
@@ -74,7 +74,7 @@ void CpuTracer::upload(const SpectralHistogram& histogram) {
 RenderImage CpuTracer::develop(const ResolveParameters& parameters) { return resolveOnCpu(download(), parameters); }
 
 std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
-  device::BeamKernel kernel(plan_.constants, plan_.lights, plan_.intervals, plan_.cmfTable);
+  device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.cmfTable);
   std::vector<device::BeamRecord> records(count);
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t pixel, bin;

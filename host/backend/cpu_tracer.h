@@ -7,14 +7,14 @@
 #include <vector>
 
 #include "backend/tracer.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 
 namespace spectrace {
 
 class CpuTracer final : public Tracer {
  public:
   // threads = 0: all hardware threads.
-  explicit CpuTracer(const TracePlan& plan, unsigned threads = 0);
+  explicit CpuTracer(const CompiledScene& plan, unsigned threads = 0);
 
   DeviceKind kind() const override { return DeviceKind::Cpu; }
   std::string deviceName() const override;
@@ -26,7 +26,7 @@ class CpuTracer final : public Tracer {
   std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count) override;
 
  private:
-  TracePlan plan_;
+  CompiledScene plan_;
   unsigned threads_;
   std::vector<uint64_t> counters_;  // the stored pixels' counters, one chunk
   uint64_t countedBeams_ = 0;

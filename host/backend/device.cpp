@@ -76,7 +76,7 @@ std::unique_ptr<Device> Device::open(const DeviceSpec& spec) {
   return std::unique_ptr<Device>(new Device(vk_util::Context::create(uint32_t(spec.vulkanIndex))));
 }
 
-std::unique_ptr<Tracer> Device::makeTracer(const TracePlan& plan, const TracerOptions& options) const {
+std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const TracerOptions& options) const {
   if (vulkan_) return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures);
   return std::make_unique<CpuTracer>(plan, options.cpuThreads);
 }

@@ -8,7 +8,7 @@
 
 #include "backend/specialisation.h"
 #include "backend/tracer.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 
 namespace spectrace {
 namespace vk_util {
@@ -45,7 +45,7 @@ class Device {
   ~Device();
 
   DeviceKind kind() const { return vulkan_ ? DeviceKind::Vulkan : DeviceKind::Cpu; }
-  std::unique_ptr<Tracer> makeTracer(const TracePlan& plan, const TracerOptions& options = {}) const;
+  std::unique_ptr<Tracer> makeTracer(const CompiledScene& plan, const TracerOptions& options = {}) const;
 
  private:
   explicit Device(std::unique_ptr<vk_util::Context> vulkan);

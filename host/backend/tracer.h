@@ -2,7 +2,7 @@
 // One interface for every device that traces beams into a film: the CPU
 // reference (cpu_tracer.h) and the Vulkan tracer (vulkan_tracer.h). The
 // render loop, the bench, the CLI and the tests use only this; a tracer is
-// made for one compiled scene (TracePlan) and owns that scene's film.
+// made for one compiled scene (CompiledScene) and owns that scene's film.
 #include <atomic>
 #include <cstdint>
 #include <string>

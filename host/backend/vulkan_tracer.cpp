@@ -45,17 +45,17 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
 // The scene specialisation constants of trace_beams.comp (device_shared.h,
 // SpecConstantId): the scene's value for each feature in `features`, else
 // the general pipeline's (decide at run time).
-std::vector<vk_util::SpecConstant> traceSpecialisation(const TracePlan& plan, uint32_t features) {
+std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan, uint32_t features) {
   uint32_t types = 0;
   bool aimed = false;
-  for (const auto& light : plan.lights) {
+  for (const auto& light : plan.device.lights) {
     types |= 1u << light.type;
     aimed = aimed || light.aimed != 0;
   }
   auto pick = [&](SpecialisedFeature f, uint32_t scene, uint32_t general) { return (features & f) ? scene : general; };
   return {{device::kSpecLightTypes, pick(kSpecialiseLightTypes, types, device::kAllLightTypes)},
-          {device::kSpecSelectLight, pick(kSpecialiseLightChoice, plan.lights.size() > 1 ? 1u : 0u, 1u)},
-          {device::kSpecPinhole, pick(kSpecialisePinhole, plan.constants.apertureDistance > 0.0f ? 1u : 0u, 2u)},
+          {device::kSpecSelectLight, pick(kSpecialiseLightChoice, plan.device.lights.size() > 1 ? 1u : 0u, 1u)},
+          {device::kSpecPinhole, pick(kSpecialisePinhole, plan.device.constants.apertureDistance > 0.0f ? 1u : 0u, 2u)},
           {device::kSpecExactColour, pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},
           {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)}};
 }
@@ -91,7 +91,7 @@ HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPi
   return split;
 }
 
-VulkanTracer::VulkanTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize,
+VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize,
                            uint32_t specialisedFeatures)
     : context_(context),
       plan_(plan),
@@ -100,18 +100,18 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const TracePlan& pla
       split_(HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
                                        context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize)),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
-      lights_(uploadedBuffer(context, plan.lights)),
-      intervals_(uploadedBuffer(context, plan.intervals)),
+      lights_(uploadedBuffer(context, plan.device.lights)),
+      intervals_(uploadedBuffer(context, plan.device.intervals)),
       unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
-      cmfTable_(uploadedBuffer(context, plan.cmfTable)),
+      cmfTable_(uploadedBuffer(context, plan.device.cmfTable)),
       stats_(context, sizeof(device::TraceStats), {}, MemoryPlacement::HostVisible),
       tracePipeline_(context, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
                      sizeof(device::TracePush), specConstants(workgroupSize, false, traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
                        sizeof(device::ResolvePush), {{device::kSpecWorkgroupSize, workgroupSize}}),
       timestamps_(context, 2) {
-  plan_.constants.pixelsPerChunk = split_.pixelsPerChunk;
-  traceConstants_.upload(&plan_.constants, sizeof(plan_.constants));
+  plan_.device.constants.pixelsPerChunk = split_.pixelsPerChunk;
+  traceConstants_.upload(&plan_.device.constants, sizeof(plan_.device.constants));
   const uint64_t pixelBytes = uint64_t(plan.film.countersPerPixel()) * sizeof(uint64_t);
   for (uint32_t c = 0; c < split_.chunkCount; ++c) {
     const uint64_t pixels =
@@ -229,7 +229,7 @@ void VulkanTracer::upload(const SpectralHistogram& histogram) {
   }
 }
 
-device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolveParameters& parameters,
+device::ResolveConstants resolveConstants(const CompiledScene& plan, const ResolveParameters& parameters,
                                           uint32_t pixelsPerChunk) {
   device::ResolveConstants constants{};
   constants.pixelCount = uint32_t(plan.film.storedPixelCount());
@@ -248,7 +248,7 @@ device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolvePa
   return constants;
 }
 
-std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolveParameters& parameters) {
+std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const ResolveParameters& parameters) {
   std::vector<glm::vec3> weights;
   for (uint32_t b = plan.film.firstStoredBin; b < plan.film.firstStoredBin + plan.film.storedBins; ++b) {
     const auto& w = parameters.binWeights[b];

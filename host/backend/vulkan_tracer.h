@@ -8,7 +8,7 @@
 #include "backend/tracer.h"
 #include "film/develop.h"
 #include "film/spectral_histogram.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/specialisation.h"
 #include "vulkan/buffer.h"
 #include "vulkan/compute_pipeline.h"
@@ -29,9 +29,9 @@ struct HistogramSplit {
 };
 
 // The resolve pass's constants and the weights of the stored bins.
-device::ResolveConstants resolveConstants(const TracePlan& plan, const ResolveParameters& parameters,
+device::ResolveConstants resolveConstants(const CompiledScene& plan, const ResolveParameters& parameters,
                                           uint32_t pixelsPerChunk);
-std::vector<glm::vec3> storedBinWeights(const TracePlan& plan, const ResolveParameters& parameters);
+std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const ResolveParameters& parameters);
 
 class VulkanTracer final : public Tracer {
  public:
@@ -39,7 +39,7 @@ class VulkanTracer final : public Tracer {
   // trace pipeline is compiled for (absent light types, light choice,
   // pinhole, exact colour, aiming, fixed by specialisation constants); the
   // others are decided at run time. kSpecialiseNone is the general pipeline.
-  VulkanTracer(const vk_util::Context& context, const TracePlan& plan, uint32_t workgroupSize = 64,
+  VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize = 64,
                uint32_t specialisedFeatures = kSpecialiseAll);
 
   DeviceKind kind() const override { return DeviceKind::Vulkan; }
@@ -57,7 +57,7 @@ class VulkanTracer final : public Tracer {
 
  private:
   const vk_util::Context& context_;
-  TracePlan plan_;
+  CompiledScene plan_;
   uint32_t workgroupSize_;
   std::vector<vk_util::SpecConstant> traceSpecialisation_;  // the scene's trace specialisation constants
   HistogramSplit split_;

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "colour/colour.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "reference/exact_solution.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -36,7 +36,7 @@ ReferenceImage toReference(const ExactImage& exact, bool exactColour) {
 // Renders beams [0, beams) of `plan` on `tracer` (emptied first): the row
 // gets the wall time of trace + develop and the device times; returns the
 // image and the film.
-std::pair<RenderImage, SpectralHistogram> timedRender(Tracer& tracer, const Scene& scene, const TracePlan& plan,
+std::pair<RenderImage, SpectralHistogram> timedRender(Tracer& tracer, const Scene& scene, const CompiledScene& plan,
                                                       uint64_t beams, SweepRow& row) {
   const ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
   tracer.clear();
@@ -52,7 +52,7 @@ std::pair<RenderImage, SpectralHistogram> timedRender(Tracer& tracer, const Scen
 
 // A tracer for one scene, warmed up: the first dispatch of each pipeline
 // compiles it, which stays out of the timings.
-std::unique_ptr<Tracer> warmTracer(const Device& device, const Scene& scene, const TracePlan& plan) {
+std::unique_ptr<Tracer> warmTracer(const Device& device, const Scene& scene, const CompiledScene& plan) {
   auto tracer = device.makeTracer(plan);
   tracer->trace(0, 4096);
   tracer->develop(resolveParametersFor(scene, plan, 4096));
@@ -70,7 +70,7 @@ std::vector<SweepRow> runErrorSweep(const std::vector<DeviceSpec>& devices, cons
       const auto exact = exactSolution(scene);
       if (!exact) throw std::runtime_error(fmt::format("{}: no exact solution is known for this scene", path));
       const ReferenceImage reference = toReference(*exact, options.plan.exactColour);
-      const TracePlan plan = buildTracePlan(scene, options.seed, options.plan);
+      const CompiledScene plan = compileScene(scene, options.seed, options.plan);
       const auto tracer = warmTracer(*opened, scene, plan);
       for (uint64_t beams : options.beamCounts) {
         SweepRow row;
@@ -80,7 +80,7 @@ std::vector<SweepRow> runErrorSweep(const std::vector<DeviceSpec>& devices, cons
         row.beams = beams;
         row.exactColour = options.plan.exactColour;
         row.aimed = options.plan.aim;
-        for (const auto& light : plan.lights) row.aimedLights += light.aimed != 0;
+        for (const auto& light : plan.device.lights) row.aimedLights += light.aimed != 0;
         auto [image, histogram] = timedRender(*tracer, scene, plan, beams, row);
         row.hits = histogram.countedBeams;
         row.metrics = computeErrorMetrics(image, reference, estimatedRelativeVariance(histogram, beams));
@@ -113,7 +113,7 @@ std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t b
       Light laser = surfaceLight(LightType::Laser, {0.0, 0.0, 0.1}, {0.0, 0.0, -1.0}, 1.0, named.spd, named.name);
       laser.radiusM = 0.0075;
       scene.lights = {laser};
-      const TracePlan plan = buildTracePlan(scene, 5);
+      const CompiledScene plan = compileScene(scene, 5);
       const auto tracer = warmTracer(*opened, scene, plan);
       SweepRow timing;
       auto [image, histogram] = timedRender(*tracer, scene, plan, beams, timing);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "backend/device.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "metrics/error_metrics.h"
 
 namespace spectrace {
@@ -33,7 +33,7 @@ struct SweepOptions {
   std::vector<std::string> scenes;    // paths of reference scene files
   std::vector<uint64_t> beamCounts;   // e.g. 1e3 .. 1e8
   uint64_t seed = 1;
-  TracePlanOptions plan;              // exact colour, aiming (false: analog, --no-aim), ...
+  CompileOptions plan;              // exact colour, aiming (false: analog, --no-aim), ...
   std::function<void(const SweepRow&)> onRow;
 };
 

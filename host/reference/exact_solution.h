@@ -35,7 +35,7 @@ struct ExactImage {
   // the value is still a quadrature estimate (within ~1e-6 of the image's
   // peak), fine for hit fractions and pictures, not for tests.
   std::vector<uint8_t> valid;
-  double tracedPowerW = 0.0;  // Σ power_w × in-range share, as TracePlan::tracedPowerW
+  double tracedPowerW = 0.0;  // Σ power_w × in-range share, as CompiledScene::tracedPowerW
   // Expected share of all emitted beams that are counted:
   // Σ_pixels E · A_pixel / tracedPowerW (uses the estimates where !valid).
   double hitFraction = 0.0;

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "colour/colour.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "reference/exact_solution.h"
 #include "scene/scene.h"
 
@@ -220,7 +220,7 @@ TEST(PointLight, PixelIrradianceSumsToTheFluxThroughTheSensor) {
     const Scene scene = referenceScene(name);
     const ExactImage image = solve(scene);
     EXPECT_EQ(image.validCount(), image.pixelCount());
-    const TracePlan plan = buildTracePlan(scene, 1);
+    const CompiledScene plan = compileScene(scene, 1);
     EXPECT_NEAR(image.tracedPowerW, plan.tracedPowerW, 1e-15 * plan.tracedPowerW);
     // The light in the camera frame (documented in scenes/reference/README.md).
     const glm::dvec3 light = std::string(name) == "point_on_axis" ? glm::dvec3(0, 0, 0.004) : glm::dvec3(0.005, -0.003, 0.006);
@@ -255,7 +255,7 @@ TEST(UniformIrradiance, EveryPixelGetsPowerOverBeamArea) {
   for (const char* name : {"uniform_d65", "uniform_a", "uniform_f2", "uniform_f11", "uniform_led_b3"}) {
     const Scene scene = referenceScene(name);
     const ExactImage image = solve(scene);
-    const TracePlan plan = buildTracePlan(scene, 1);
+    const CompiledScene plan = compileScene(scene, 1);
     const double r = scene.lights.at(0).radiusM;
     const double expected = plan.tracedPowerW / (kPi * r * r);
     EXPECT_EQ(image.validCount(), image.pixelCount()) << name;
@@ -509,7 +509,7 @@ TEST(ReferenceScenes, AllLoadAndAreRecognised) {
     ASSERT_TRUE(image.has_value()) << name;
     EXPECT_EQ(image->width, scene.camera.pixelsX);
     EXPECT_EQ(image->height, scene.camera.pixelsY);
-    EXPECT_NEAR(image->tracedPowerW, buildTracePlan(scene, 1).tracedPowerW, 1e-15) << name;
+    EXPECT_NEAR(image->tracedPowerW, compileScene(scene, 1).tracedPowerW, 1e-15) << name;
     // pinhole_small counts 4e-5 of analog beams: it is there for aimed
     // sampling, which counts about half.
     EXPECT_GT(image->hitFraction, 1e-5) << name;

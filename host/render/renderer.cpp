@@ -8,7 +8,7 @@
 
 namespace spectrace {
 
-ResolveParameters resolveParametersFor(const Scene& scene, const TracePlan& plan, uint64_t beams) {
+ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams) {
   ResolveParameters parameters;
   const Observer& observer = observerByName(scene.observer);
   parameters.binWeights = binAveragedCmf(observer, plan.film.lambdaMinNm, plan.film.lambdaMaxNm, int(plan.film.bins));
@@ -43,8 +43,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 RenderResult render(const Scene& scene, const RenderOptions& options, const Device& device) {
   const auto start = Clock::now();
   RenderResult result;
-  result.plan = buildTracePlan(scene, options.seed, options.plan);
-  const TracePlan& plan = result.plan;
+  result.plan = compileScene(scene, options.seed, options.plan);
+  const CompiledScene& plan = result.plan;
   const auto tracer = device.makeTracer(
       plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads});
   result.deviceKind = tracer->kind();

@@ -10,7 +10,7 @@
 #include "film/develop.h"
 #include "film/spectral_histogram.h"
 #include "io/image.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "scene/scene.h"
 
 namespace spectrace {
@@ -22,7 +22,7 @@ struct RenderOptions {
   DeviceChoice device = DeviceChoice::Auto;
   unsigned cpuThreads = 0;           // 0: all hardware threads
   uint32_t workgroupSize = 64;
-  TracePlanOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights
+  CompileOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights
   // GPU: the scene features the trace pipeline is compiled for
   // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
   uint32_t specialisedFeatures = kSpecialiseAll;
@@ -37,7 +37,7 @@ struct RenderOptions {
 };
 
 struct RenderResult {
-  TracePlan plan;
+  CompiledScene plan;
   SpectralHistogram histogram;
   RenderImage image;
   uint64_t beamsTraced = 0;     // < options.beams only when cancelled
@@ -58,6 +58,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
 
 // The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
 // the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.
-ResolveParameters resolveParametersFor(const Scene& scene, const TracePlan& plan, uint64_t beams);
+ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams);
 
 }  // namespace spectrace

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "kernel/beam_kernel.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "support/test_scenes.h"
 
@@ -33,10 +33,10 @@ inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) 
 // Traces beams [firstBeam, firstBeam + count) on both devices, prints the
 // first few differences and the totals, and records the agreement rate as a
 // test property.
-inline BeamAgreement beamByBeam(const TracePlan& plan, uint64_t firstBeam, uint32_t count, const std::string& name) {
+inline BeamAgreement beamByBeam(const CompiledScene& plan, uint64_t firstBeam, uint32_t count, const std::string& name) {
   VulkanTracer gpu(sharedVulkan(), plan);
   const auto records = gpu.traceRecorded(firstBeam, count);
-  device::BeamKernel cpu(plan.constants, plan.lights, plan.intervals);
+  device::BeamKernel cpu(plan.device.constants, plan.device.lights, plan.device.intervals);
   BeamAgreement result;
   for (uint32_t i = 0; i < count; ++i) {
     const device::BeamRecord expected = cpuRecord(cpu, firstBeam + i);

@@ -14,7 +14,7 @@ struct CpuTraceOptions {
   const std::atomic<bool>* cancel = nullptr;  // stops early when set
 };
 
-inline uint64_t traceOnCpu(const TracePlan& plan, uint64_t firstBeam, uint64_t beamCount, SpectralHistogram& histogram,
+inline uint64_t traceOnCpu(const CompiledScene& plan, uint64_t firstBeam, uint64_t beamCount, SpectralHistogram& histogram,
                            const CpuTraceOptions& options = {}) {
   CpuTracer tracer(plan, options.threads);
   if (plan.film.hasShapeOf(histogram)) tracer.upload(histogram);

@@ -13,7 +13,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "film/spectral_histogram.h"
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 
 namespace spectrace::testing {
 
@@ -30,7 +30,7 @@ struct PixelEstimates {
   double totalVariance = 0.0;  // sum over pixels of v E
 };
 
-inline PixelEstimates pixelEstimates(const SpectralHistogram& h, const TracePlan& plan, uint64_t beams) {
+inline PixelEstimates pixelEstimates(const SpectralHistogram& h, const CompiledScene& plan, uint64_t beams) {
   const double k = plan.irradiancePerCount(beams), units = double(h.unitsPerBeam);
   const size_t pixels = size_t(h.pixelsX) * h.pixelsY;
   std::vector<double> counts(pixels, 0.0);

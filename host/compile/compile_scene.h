@@ -1,17 +1,32 @@
 #pragma once
-// Everything a trace needs, derived from a scene in double precision on the
-// host: the device tables (light records in the camera frame, spectral
-// intervals, integer CDFs) and the physical scale of one count.
+// The scene compiler: a scene, in double precision on the host, becomes what
+// a tracer runs (a DeviceScene: light records in the camera frame, spectral
+// tables, the light-selection CDF, camera constants), the film it fills
+// (FilmLayout), the physical scale of one count, and a report per light.
+// Skipping and aiming are passes, each taken only when its precondition
+// holds (compile/shortcuts.h).
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "film/film_layout.h"
 #include "device_shared.h"
+#include "film/film_layout.h"
 #include "scene/scene.h"
 
 namespace spectrace {
 
+// What the kernel reads: its constants and tables (shaders/device_shared.h).
+struct DeviceScene {
+  // Scene-wide kernel constants. Their film fields (window, stored bins,
+  // countersPerPixel, weightUnits) mirror the FilmLayout; pixelsPerChunk is
+  // set by the backend that splits the film into buffers.
+  device::TraceConstants constants{};
+  std::vector<device::LightRecord> lights;          // traced lights, with the selection CDF
+  std::vector<device::SpectralInterval> intervals;  // every traced light's spectral table
+  std::vector<glm::vec3> cmfTable;                  // the observer's CMF nodes, for exact colour
+};
+
+// What became of one scene light, for messages and the bench.
 struct LightSummary {
   std::string label;       // e.g. "/lights/2 (disk, D65)"
   double powerW = 0.0;     // as given
@@ -25,19 +40,15 @@ struct LightSummary {
   std::string notTracedBecause;  // why, when not traced
 };
 
-struct TracePlan {
-  // Scene-wide kernel constants. Their film fields (window, stored bins,
-  // countersPerPixel) mirror `film`; pixelsPerChunk is the backend's.
-  device::TraceConstants constants{};
-  std::vector<device::LightRecord> lights;
-  std::vector<device::SpectralInterval> intervals;
-  std::vector<glm::vec3> cmfTable;      // the observer's CMF nodes, for exact colour
+struct CompiledScene {
+  DeviceScene device;
   FilmLayout film;                      // what the device stores, and how
   std::vector<LightSummary> summaries;  // one per scene light, in scene order
-  double tracedPowerW = 0.0;            // sum over traced lights
-  // Sum over traced lights of power x largest weight: the power a
+  // The physical scale. tracedPowerW: the sum over traced lights;
+  // sampledPowerW: the sum of power x largest weight, the power a
   // full-weight beam stands for, times the beam count (= tracedPowerW
   // without aiming).
+  double tracedPowerW = 0.0;
   double sampledPowerW = 0.0;
 
   // W/m^2 per bin carried by one count when `beams` beams were traced: a
@@ -49,28 +60,25 @@ struct TracePlan {
   }
 };
 
-struct TracePlanOptions {
+// Each shortcut can be turned off here (the unshortened reference path);
+// compile/shortcuts.h says when each is valid at all.
+struct CompileOptions {
   // Accumulate each counted beam's own CMF values per pixel (exact colour
   // whatever the bin count); otherwise colour comes from bin-averaged CMFs.
   bool exactColour = true;
-  // Never sample lights that provably cannot reach the sensor (behind it or
-  // the aperture, facing away, a collimated beam that misses). Off: trace
-  // them anyway (the unskipped reference path).
+  // Never sample lights that provably cannot reach the sensor.
   bool skipUnreachableLights = true;
-  // Store only the wavelength bins the traced lights can reach (a 532 nm
-  // laser needs one); off: store the whole spectrum range.
+  // Store only the wavelength bins the traced lights can reach.
   bool trimSpectrum = true;
-  // Store only the pixels beams can reach (a rectangle: the image of the
-  // lights through a pinhole, a laser's footprint); off: the whole sensor.
+  // Store only the pixels beams can reach.
   bool trimPixels = true;
-  // Draw beams only towards the camera (the pinhole, or the bare sensor),
-  // weighted so the estimate is unbiased; off: analog emission (the
-  // reference path).
+  // Draw beams only towards the camera, weighted so the estimate is
+  // unbiased; off: analog emission.
   bool aim = true;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be
 // traced, e.g. when no light has power inside the spectrum range.
-TracePlan buildTracePlan(const Scene& scene, uint64_t seed, const TracePlanOptions& options = {});
+CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptions& options = {});
 
 }  // namespace spectrace

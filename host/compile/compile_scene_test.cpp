@@ -1,5 +1,5 @@
 // The trace plan's aiming decisions and weights, against closed forms.
-#include "lights/trace_plan.h"
+#include "compile/compile_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -29,9 +29,9 @@ TEST(AimedPlan, PointLightSamplesTheConeOfThePinhole) {
   // the sine (4e-7 against r / d = 5e-4) changes h by under 2e-3 relative.
   Scene scene = pinholeScene(0.05, 0.0005);
   scene.lights = {pointLight({0.0, 0.0, 1.05}, 2.0, *cieIlluminant("D65"))};
-  const TracePlan plan = buildTracePlan(scene, 1);
-  ASSERT_EQ(plan.lights.size(), 1u);
-  EXPECT_EQ(plan.lights[0].aimed, 1u);
+  const CompiledScene plan = compileScene(scene, 1);
+  ASSERT_EQ(plan.device.lights.size(), 1u);
+  EXPECT_EQ(plan.device.lights[0].aimed, 1u);
   const double exact = 0.5 * oneMinusCos(0.0005 / 1.0);
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
   EXPECT_GT(plan.summaries[0].largestWeight, exact) << "the sampled cone must hold the whole pinhole";
@@ -46,9 +46,9 @@ TEST(AimedPlan, LightChoiceFollowsPowerTimesLargestWeight) {
   Scene scene = pinholeScene(0.05, 0.0005);
   scene.lights = {pointLight({0.0, 0.0, 0.55}, 1.0, *cieIlluminant("D65")),
                   pointLight({0.0, 0.0, 1.05}, 1.0, *cieIlluminant("D65"))};
-  const TracePlan plan = buildTracePlan(scene, 1);
-  ASSERT_EQ(plan.lights.size(), 2u);
-  const double shareOfFirst = double(plan.lights[1].selectCdfLow) / 18446744073709551616.0;
+  const CompiledScene plan = compileScene(scene, 1);
+  ASSERT_EQ(plan.device.lights.size(), 2u);
+  const double shareOfFirst = double(plan.device.lights[1].selectCdfLow) / 18446744073709551616.0;
   EXPECT_NEAR(shareOfFirst, 0.8, 2e-3);
 }
 
@@ -65,10 +65,10 @@ TEST(AimedPlan, AimsOnlyWhereItNarrowsTheSampling) {
   Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.0505}, {0, 0, -1}, 1.0, *cieIlluminant("A"));
   panel.radiusM = 0.01;
   scene.lights = {spot, laser, inside, panel};
-  const TracePlan plan = buildTracePlan(scene, 1);
-  ASSERT_EQ(plan.lights.size(), 4u);
+  const CompiledScene plan = compileScene(scene, 1);
+  ASSERT_EQ(plan.device.lights.size(), 4u);
   for (size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(plan.lights[i].aimed, 0u) << plan.summaries[i].label;
+    EXPECT_EQ(plan.device.lights[i].aimed, 0u) << plan.summaries[i].label;
     EXPECT_EQ(plan.summaries[i].largestWeight, 1.0) << plan.summaries[i].label;
   }
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
@@ -83,14 +83,14 @@ TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
   Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 1.05}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
   disk.radiusM = 0.1;
   scene.lights = {disk};
-  const TracePlan plan = buildTracePlan(scene, 1);
-  EXPECT_EQ(plan.lights[0].aimed, 1u);
+  const CompiledScene plan = compileScene(scene, 1);
+  EXPECT_EQ(plan.device.lights[0].aimed, 1u);
   EXPECT_TRUE(plan.film.weighted());
-  EXPECT_EQ(plan.constants.weightUnits, device::kWeightUnitsFractional);
+  EXPECT_EQ(plan.device.constants.weightUnits, device::kWeightUnitsFractional);
   EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u + 1u);
   const double exact = 2.0 * oneMinusCos(0.0005);
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
-  EXPECT_NEAR(double(plan.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
+  EXPECT_NEAR(double(plan.device.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
   const SpectralHistogram h = plan.film.emptyHistogram();
   EXPECT_TRUE(h.isWeighted());
   EXPECT_EQ(h.squaredWeightSums.size(), plan.film.pixelCount());
@@ -101,10 +101,10 @@ TEST(AimedPlan, NoAimIsTheAnalogPlan) {
   Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 1.05}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
   disk.radiusM = 0.1;
   scene.lights = {disk, pointLight({0.0, 0.0, 1.05}, 2.0, *cieIlluminant("A"))};
-  TracePlanOptions options;
+  CompileOptions options;
   options.aim = false;
-  const TracePlan plan = buildTracePlan(scene, 1, options);
-  for (const auto& light : plan.lights) EXPECT_EQ(light.aimed, 0u);
+  const CompiledScene plan = compileScene(scene, 1, options);
+  for (const auto& light : plan.device.lights) EXPECT_EQ(light.aimed, 0u);
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
   EXPECT_FALSE(plan.film.weighted());
   EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u);
@@ -133,15 +133,15 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
     light.uAxis = glm::normalize(glm::cross(direction, glm::dvec3(0.3, 1.0, 0.1)));
     light.coneHalfAngleDeg = uniform(1.0, 60.0);
     scene.lights = {light};
-    TracePlan plan;
+    CompiledScene plan;
     try {
-      plan = buildTracePlan(scene, uint64_t(trial));
+      plan = compileScene(scene, uint64_t(trial));
     } catch (const SceneError&) {
       continue;  // the light cannot reach the sensor
     }
     windowed += plan.film.storedPixelCount() < plan.film.pixelCount();
-    device::BeamKernel kernel(plan.constants, plan.lights, plan.intervals);
-    const auto& c = plan.constants;
+    device::BeamKernel kernel(plan.device.constants, plan.device.lights, plan.device.intervals);
+    const auto& c = plan.device.constants;
     int outside = 0;
     for (uint64_t i = 0; i < 20'000; ++i) {
       uint32_t pixel, bin;

@@ -1,0 +1,198 @@
+#include "compile/compile_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "camera/camera_frame.h"
+#include "colour/colour.h"
+#include "compile/shortcuts.h"
+#include "film/pixel_window.h"
+#include "kernel/beam_kernel.h"
+#include "lights/light_shared.h"
+#include "spectrum/wavelength_sampler.h"
+
+namespace spectrace {
+namespace {
+
+// The sphere every counted beam passes through: the pinhole's disk, or the
+// bare sensor (its half diagonal).
+AimTarget aimTarget(const Camera& camera) {
+  const double slack = double(SPECTRACE_AIM_SLACK);
+  if (camera.pinhole) return {{0.0, 0.0, camera.pinhole->distanceM}, camera.pinhole->radiusM, slack};
+  return {{0.0, 0.0, 0.0}, 0.5 * std::hypot(camera.sensorWidthM, camera.sensorHeightM), slack};
+}
+
+std::string sceneName(const Scene& scene) {
+  return scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
+}
+
+// The whole sensor and spectrum, before any trimming.
+FilmLayout sensorFilm(const Scene& scene, bool exactColour) {
+  const Camera& camera = scene.camera;
+  FilmLayout film;
+  film.pixelsX = uint32_t(camera.pixelsX);
+  film.pixelsY = uint32_t(camera.pixelsY);
+  film.bins = uint32_t(scene.spectrum.bins);
+  film.lambdaMinNm = scene.spectrum.minNm;
+  film.lambdaMaxNm = scene.spectrum.maxNm;
+  film.pixelAreaM2 = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
+  film.window = {0, 0, film.pixelsX, film.pixelsY};
+  film.firstStoredBin = 0;
+  film.storedBins = film.bins;
+  film.exactColour = exactColour;
+  film.weightUnits = 1;
+  return film;
+}
+
+// The light's placement in the camera frame, with the frame its type uses.
+LightFrame lightFrame(const Light& light, const LightTypeUnit& unit, const CameraFrame& frame) {
+  const glm::dvec3 axis = glm::normalize(frame.directionToLocal(light.direction));
+  glm::dvec3 tangent = unit.tangentFromUAxis ? frame.directionToLocal(light.uAxis) : perpendicular(axis);
+  tangent = glm::normalize(tangent - axis * glm::dot(tangent, axis));
+  return {frame.pointToLocal(light.position), axis, tangent, glm::cross(axis, tangent)};
+}
+
+// Light records, spectral tables and summaries, through each light type's
+// unit; the skip and aim passes act per light. Returns each traced light's
+// reach and its selection weight (power x largest weight).
+void compileLights(const Scene& scene, const CompileOptions& options, CompiledScene& compiled,
+                   std::vector<LightReach>& reaches, std::vector<double>& selectWeights) {
+  const SpectrumRange& range = scene.spectrum;
+  const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
+  const AimTarget target = aimTarget(scene.camera);
+  const bool skip = shortcutApplies(Shortcut::SkipUnreachableLights, options.skipUnreachableLights, scene);
+  const bool aim = shortcutApplies(Shortcut::AimAtCamera, options.aim, scene);
+  DeviceScene& device = compiled.device;
+  for (const Light& light : scene.lights) {
+    LightSummary summary;
+    const LightTypeUnit& unit = lightTypeUnit(light.type);
+    summary.label = fmt::format("{} ({}, {})", light.label, unit.name, light.spdLabel);
+    summary.powerW = light.powerW;
+    const Spd clipped = light.spd.clipped(range.minNm, range.maxNm);
+    const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
+    summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
+    summary.tracedPowerW = light.powerW * summary.inRangeShare;
+    const LightFrame local = lightFrame(light, unit, frame);
+    if (!(summary.tracedPowerW > 0.0)) {
+      summary.notTracedBecause = light.powerW > 0.0 ? "it has no power inside the spectrum range" : "its power is zero";
+    } else if (skip) {
+      summary.notTracedBecause = unit.unreachableBecause(light, local, scene.camera);
+    }
+    if (summary.notTracedBecause.empty()) {
+      summary.traced = true;
+      SpectralTable table = buildSpectralTable(clipped);
+      device::LightRecord record{};
+      record.type = uint32_t(light.type);
+      record.spectralFirst = uint32_t(device.intervals.size());
+      record.spectralCount = uint32_t(table.intervals.size());
+      device.intervals.insert(device.intervals.end(), table.intervals.begin(), table.intervals.end());
+      record.position = toFloat(local.position);
+      record.axis = toFloat(local.axis);
+      record.tangent = toFloat(local.tangent);
+      record.bitangent = toFloat(local.bitangent);
+      unit.pack(light, record);
+      if (aim) summary.largestWeight = unit.aim(light, local, target, record);
+      summary.aimed = record.aimed != 0;
+      device.lights.push_back(record);
+      reaches.push_back(unit.reach(light, local));
+      // Selection in proportion to power x largest weight: each light's
+      // weight ratios are then <= 1 and its beams share one scale.
+      selectWeights.push_back(summary.tracedPowerW * summary.largestWeight);
+      compiled.tracedPowerW += summary.tracedPowerW;
+      compiled.sampledPowerW += summary.tracedPowerW * summary.largestWeight;
+      if (record.aimed && unit.aimedWeightsVary) compiled.film.weightUnits = device::kWeightUnitsFractional;
+    }
+    if (!summary.traced) summary.tracedPowerW = 0.0;
+    compiled.summaries.push_back(summary);
+  }
+  if (device.lights.empty()) {
+    std::string why;
+    for (const auto& s : compiled.summaries) why += fmt::format("\n  {}: {}", s.label, s.notTracedBecause);
+    throw SceneError(fmt::format("{}: /lights: no light can put a beam on the sensor:{}", sceneName(scene), why));
+  }
+}
+
+// Camera, spectrum, observer and seed constants of the kernel.
+void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
+  const Camera& camera = scene.camera;
+  const SpectrumRange& range = scene.spectrum;
+  device::TraceConstants& c = device.constants;
+  c.sensorHalfSize = glm::vec2(float(0.5 * camera.sensorWidthM), float(0.5 * camera.sensorHeightM));
+  c.pixelsPerMetre = glm::vec2(float(camera.pixelsX / camera.sensorWidthM), float(camera.pixelsY / camera.sensorHeightM));
+  c.pixelsX = uint32_t(camera.pixelsX);
+  c.pixelsY = uint32_t(camera.pixelsY);
+  c.lightCount = uint32_t(device.lights.size());
+  c.lambdaMin = float(range.minNm);
+  c.binsPerNm = float(range.bins / (range.maxNm - range.minNm));
+  if (camera.pinhole) {
+    c.apertureDistance = float(camera.pinhole->distanceM);
+    c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
+  }
+  c.pixelsPerChunk = c.pixelsX * c.pixelsY;
+  const Observer& observer = observerByName(scene.observer);
+  for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
+    device.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));
+  c.cmfCount = uint32_t(observer.lambdaNm.size());
+  c.cmfLambdaMin = float(observer.lambdaNm.front());
+  c.cmfNodesPerNm = float((observer.lambdaNm.size() - 1) / (observer.lambdaNm.back() - observer.lambdaNm.front()));
+  c.seed = seed;
+  const AimTarget target = aimTarget(camera);
+  c.aimCentre = toFloat(target.centre);
+  c.aimRadius = floatAtLeast(target.radius);
+}
+
+// Trim-spectrum pass: the lowest and highest bin any sample can fall in,
+// from the very float operations of the kernel (emit.h): an interval's
+// wavelengths run from lambda0 + width * 0 to lambda0 + width * 1,
+// monotonically in t.
+void trimSpectrum(const DeviceScene& device, FilmLayout& film) {
+  const device::TraceConstants& c = device.constants;
+  device::BeamKernel kernel(c, device.lights, device.intervals);
+  uint32_t first = film.bins, last = 0;
+  for (const auto& iv : device.intervals) {
+    const float lowest = iv.lambda0 + iv.width * 0.0f;
+    const float highest = iv.lambda0 + iv.width * 1.0f;
+    first = std::min(first, kernel.binOfWavelength(lowest, c.lambdaMin, c.binsPerNm, film.bins));
+    last = std::max(last, kernel.binOfWavelength(highest, c.lambdaMin, c.binsPerNm, film.bins));
+  }
+  film.firstStoredBin = first;
+  film.storedBins = last - first + 1;
+}
+
+// The kernel's copy of the film's shape.
+void filmConstants(const FilmLayout& film, device::TraceConstants& c) {
+  c.exactColour = film.exactColour ? 1u : 0u;
+  c.totalBins = film.bins;
+  c.binOffset = film.firstStoredBin;
+  c.bins = film.storedBins;
+  c.countersPerPixel = film.countersPerPixel();
+  c.weightUnits = film.weightUnits;
+  c.windowX0 = film.window.x0;
+  c.windowY0 = film.window.y0;
+  c.windowWidth = film.window.width;
+  c.windowHeight = film.window.height;
+}
+
+}  // namespace
+
+CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptions& options) {
+  validateScene(scene);  // scenes built in code get the loader's guarantees too
+  CompiledScene compiled;
+  compiled.film = sensorFilm(scene, options.exactColour);
+  std::vector<LightReach> reaches;
+  std::vector<double> selectWeights;
+  compileLights(scene, options, compiled, reaches, selectWeights);
+  const auto lows = quantizeCdf(selectWeights);
+  for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
+  cameraConstants(scene, seed, compiled.device);
+  if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);
+  if (shortcutApplies(Shortcut::TrimPixels, options.trimPixels, scene))
+    compiled.film.window = reachablePixelWindow(scene.camera, reaches);
+  filmConstants(compiled.film, compiled.device.constants);
+  return compiled;
+}
+
+}  // namespace spectrace

@@ -1,0 +1,33 @@
+#pragma once
+// The shortcuts the compiler takes, and when each is valid, in one place.
+// Every shortcut is on by default, has an option to turn it off (the
+// unshortened reference path) and a test against that path. A pass asks
+// shortcutApplies() before it acts, so a scene that breaks a precondition
+// gets the unshortened path whatever the options say.
+#include <string>
+
+#include "scene/scene.h"
+
+namespace spectrace {
+
+enum class Shortcut {
+  // Lights that provably cannot put a beam on the sensor are never sampled.
+  SkipUnreachableLights,
+  // Beams are drawn only towards the camera's target sphere, weighted by
+  // emission density / sampling density.
+  AimAtCamera,
+  // The film stores only the wavelength bins the lights can reach.
+  TrimSpectrum,
+  // The film stores only the rectangle of pixels beams can reach.
+  TrimPixels,
+};
+
+const char* shortcutName(Shortcut shortcut);
+// What must hold for the shortcut to be exact, in words (docs and messages).
+const char* shortcutPrecondition(Shortcut shortcut);
+// Why the shortcut is not valid for `scene`, or "" when it is.
+std::string shortcutBlockedBecause(Shortcut shortcut, const Scene& scene);
+// Whether a pass may take the shortcut: asked for, and valid for the scene.
+bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene);
+
+}  // namespace spectrace
