@@ -2,7 +2,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/scene_error.h"
+#include "json/scene_error.h"
 
 namespace spectrace {
 

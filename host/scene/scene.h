@@ -9,7 +9,7 @@
 
 #include "camera/camera.h"
 #include "lights/light.h"
-#include "scene/scene_error.h"
+#include "json/scene_error.h"
 #include "spectrum/spd.h"
 
 namespace spectrace {

@@ -1,6 +1,7 @@
 #pragma once
-// The one exception for a scene that cannot be used (header only, so the
-// camera and lights modules can throw it without linking the scene module).
+// The one exception for a scene that cannot be used. It lives in the lowest
+// module, beside the JSON field errors, so the camera and lights modules can
+// throw it without depending on the scene module above them.
 #include <stdexcept>
 
 namespace spectrace {
