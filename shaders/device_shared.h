@@ -55,8 +55,9 @@ END_BINDING();
 // works without non-uniform descriptor indexing (lavapipe lacks it).
 SPECTRACE_CONSTANT uint kMaxHistogramChunks = 8;
 
-// Light types (spectrace::LightType takes its values from these). One
-// kernel unit per type in shaders/lights/, one host unit in host/lights/.
+// Light types (spectrace::LightType, at the end of this file, takes its
+// values from these). One kernel unit per type in shaders/lights/<type>.h,
+// one host unit in host/lights/<type>_light.cpp.
 SPECTRACE_CONSTANT uint kLightPoint = 0;
 SPECTRACE_CONSTANT uint kLightSpot = 1;
 SPECTRACE_CONSTANT uint kLightDisk = 2;
@@ -114,7 +115,7 @@ struct LightRecord {
   vec3 axis;              // spot/laser direction, disk/rect normal
   vec3 tangent;           // with bitangent, completes an orthonormal frame
   vec3 bitangent;
-  // Aimed sampling (see lights/trace_plan.cpp for the derivations).
+  // Aimed sampling (host/lights/light_shared.h has the derivations).
   uint aimed;             // 0: analog emission; 1: only towards the camera's target sphere
   float aimSpread;        // point/spot: 1 - cos(half angle) of the cone about aimAxis holding
                           // the target; laser: radius of the disk of origins that can reach it
@@ -277,6 +278,18 @@ static_assert(sizeof(ResolvedPixel) == 28);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(ResolvePush) == 8);
 }  // namespace spectrace::device
+
+namespace spectrace {
+// The light types on the host, numbered as the kernel numbers them.
+enum class LightType : uint32_t {
+  Point = device::kLightPoint,
+  Spot = device::kLightSpot,
+  Disk = device::kLightDisk,
+  Rect = device::kLightRect,
+  Laser = device::kLightLaser,
+};
+static_assert(uint32_t(LightType::Laser) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
+}  // namespace spectrace
 #endif
 
 #endif  // SPECTRACE_DEVICE_SHARED_H

@@ -7,6 +7,9 @@
 #include "lights/light_shared.h"
 
 namespace spectrace {
+
+const LightTypeUnit& diskLightUnit();  // below; the table is lights/light_types.cpp
+
 namespace {
 
 namespace jf = json_fields;

@@ -11,6 +11,9 @@
 #include "lights/light_shared.h"
 
 namespace spectrace {
+
+const LightTypeUnit& laserLightUnit();  // below; the table is lights/light_types.cpp
+
 namespace {
 
 namespace jf = json_fields;

@@ -13,16 +13,8 @@
 
 namespace spectrace {
 
-// The device's numbering, so host and shaders cannot disagree.
-enum class LightType : uint32_t {
-  Point = device::kLightPoint,
-  Spot = device::kLightSpot,
-  Disk = device::kLightDisk,
-  Rect = device::kLightRect,
-  Laser = device::kLightLaser,
-};
-inline constexpr uint32_t kLightTypeCount = 5;
-static_assert(uint32_t(LightType::Laser) + 1 == kLightTypeCount, "light types are numbered 0.. without gaps");
+// LightType is defined in device_shared.h, numbered as the kernel numbers it.
+inline constexpr uint32_t kLightTypeCount = device::kLightTypeCount;
 
 // "point", "spot", ... (the unit's name).
 const char* lightTypeName(LightType type);

@@ -73,12 +73,4 @@ AreaAimGeometry areaAimGeometry(const LightFrame& frame, const AimTarget& target
 // sqrt(normal^2 + outside2): aimed when every origin sees a narrow cone.
 double aimLambertian(double normal, double outside2, const AimTarget& target, device::LightRecord& record);
 
-// The units, one file each; everything else reaches them through
-// lightTypeUnit() (light_types.cpp).
-const LightTypeUnit& pointLightUnit();
-const LightTypeUnit& spotLightUnit();
-const LightTypeUnit& diskLightUnit();
-const LightTypeUnit& rectLightUnit();
-const LightTypeUnit& laserLightUnit();
-
 }  // namespace spectrace

@@ -6,6 +6,13 @@
 
 namespace spectrace {
 
+// Each defined in its own unit, lights/<type>_light.cpp.
+const LightTypeUnit& pointLightUnit();
+const LightTypeUnit& spotLightUnit();
+const LightTypeUnit& diskLightUnit();
+const LightTypeUnit& rectLightUnit();
+const LightTypeUnit& laserLightUnit();
+
 const std::vector<const LightTypeUnit*>& lightTypeUnits() {
   static const std::vector<const LightTypeUnit*> units = [] {
     std::vector<const LightTypeUnit*> all = {&pointLightUnit(), &spotLightUnit(), &diskLightUnit(), &rectLightUnit(),

@@ -2,6 +2,9 @@
 #include "lights/light_shared.h"
 
 namespace spectrace {
+
+const LightTypeUnit& pointLightUnit();  // below; the table is lights/light_types.cpp
+
 namespace {
 
 namespace jf = json_fields;

@@ -10,6 +10,9 @@
 #include "lights/light_shared.h"
 
 namespace spectrace {
+
+const LightTypeUnit& rectLightUnit();  // below; the table is lights/light_types.cpp
+
 namespace {
 
 namespace jf = json_fields;

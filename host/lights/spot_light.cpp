@@ -8,6 +8,9 @@
 #include "lights/light_shared.h"
 
 namespace spectrace {
+
+const LightTypeUnit& spotLightUnit();  // below; the table is lights/light_types.cpp
+
 namespace {
 
 namespace jf = json_fields;

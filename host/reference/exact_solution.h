@@ -113,7 +113,7 @@ struct GaussLegendreRule {
 };
 const GaussLegendreRule& gaussLegendre(int n);
 
-// Traced power of one light: power_w × in-range share (as trace_plan.cpp).
+// Traced power of one light: power_w × in-range share (as compile/compile_scene.cpp).
 double tracedPower(const Light& light, const SpectrumRange& range);
 // 683 · ∫S·cmf / ∫S over the range (XYZ per W/m²), CMF at each wavelength;
 // zeros when the light has nothing in range.
