@@ -131,7 +131,6 @@ void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
     c.apertureDistance = float(camera.pinhole->distanceM);
     c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
   }
-  c.pixelsPerChunk = c.pixelsX * c.pixelsY;
   const Observer& observer = observerByName(scene.observer);
   for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
     device.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));

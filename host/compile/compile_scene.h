@@ -19,7 +19,7 @@ namespace spectrace {
 struct DeviceScene {
   // Scene-wide kernel constants. Their film fields (window, stored bins,
   // countersPerPixel, weightUnits) mirror the FilmLayout; pixelsPerChunk is
-  // set by the backend that splits the film into buffers.
+  // left 0 for the backend that splits the film into buffers to set.
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights;          // traced lights, with the selection CDF
   std::vector<device::SpectralInterval> intervals;  // every traced light's spectral table
