@@ -50,6 +50,10 @@ START_BINDING(RngCheckBinding)
   kBindingRngWords = 0
 END_BINDING();
 
+// The resolve pass sums this many bins per loop iteration, written out in
+// resolve.comp (llvmpipe stops a loop after 65535 iterations).
+SPECTRACE_CONSTANT uint kResolveBinsPerIteration = 4u;
+
 // Histograms larger than maxStorageBufferRange are split into up to this many
 // buffers, each holding whole pixels. A fixed array indexed through a switch
 // works without non-uniform descriptor indexing (lavapipe lacks it).

@@ -46,7 +46,30 @@ void main() {
   uint base = (pixel - chunk * rc.pixelsPerChunk) * rc.countersPerPixel;
   uint64_t total = 0ul;  // exact
   vec3 weighted = vec3(0.0);
-  for (uint b = 0u; b < rc.bins; ++b) {
+  // llvmpipe (lavapipe) ends a shader loop after 65535 iterations in all
+  // (nesting does not reset the count), which silently dropped the bins
+  // past 65535. So the loop takes kResolveBinsPerIteration bins at a time
+  // (vulkan_tracer.cpp checks that the largest spectrum stays under the
+  // limit); the bins are still summed one by one, in order.
+  uint b = 0u;
+  uint whole = rc.bins - rc.bins % kResolveBinsPerIteration;
+  for (; b < whole; b += kResolveBinsPerIteration) {
+    // Written out, not an inner loop, which would count towards the limit
+    // unless the compiler happened to unroll it.
+    uint64_t c0 = readCount(chunk, base + b);
+    uint64_t c1 = readCount(chunk, base + b + 1u);
+    uint64_t c2 = readCount(chunk, base + b + 2u);
+    uint64_t c3 = readCount(chunk, base + b + 3u);
+    total += c0;
+    weighted += float(c0) * binWeights[b];
+    total += c1;
+    weighted += float(c1) * binWeights[b + 1u];
+    total += c2;
+    weighted += float(c2) * binWeights[b + 2u];
+    total += c3;
+    weighted += float(c3) * binWeights[b + 3u];
+  }
+  for (; b < rc.bins; ++b) {
     uint64_t count = readCount(chunk, base + b);
     total += count;
     weighted += float(count) * binWeights[b];

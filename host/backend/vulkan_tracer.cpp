@@ -5,11 +5,16 @@
 #include <fmt/format.h>
 
 #include "embedded_shaders.h"
+#include "scene/scene_limits.h"
 
 namespace spectrace {
 
 using vk_util::Buffer;
 using vk_util::MemoryPlacement;
+
+// resolve.comp's bin loop must stay under llvmpipe's 65535 iterations for
+// the largest spectrum a scene may have.
+static_assert(kMaxBins / device::kResolveBinsPerIteration < 65535, "resolve.comp's bin loop would be cut short");
 
 namespace {
 
