@@ -115,6 +115,44 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
   }
 }
 
+// The traced light that carries the most power: the one to name when the
+// scene's scale is out of range.
+struct NamedLight {
+  const Light& light;
+  std::string pointer;  // e.g. "/lights/2"
+};
+NamedLight strongestLight(const Scene& scene, const CompiledScene& compiled) {
+  size_t strongest = 0;
+  for (size_t i = 1; i < compiled.summaries.size(); ++i)
+    if (compiled.summaries[i].tracedPowerW > compiled.summaries[strongest].tracedPowerW) strongest = i;
+  const Light& light = scene.lights[strongest];
+  return {light, light.label.empty() ? fmt::format("/lights/{}", strongest) : light.label};
+}
+
+// The image is float: the brightest a pixel can be (every beam in it,
+// sampledPowerW / pixel area, times 683 lm/W and a CMF value up to 2.1 in
+// XYZ) must stay far inside float range, and a pixel's area must not
+// underflow. Checked before tracing, naming the field to change.
+constexpr double kSmallestPixelAreaM2 = 1e-30;   // pixels of 1e-15 m (a femtometre)
+constexpr double kBrightestImageValue = 1e30;    // float's 3.4e38, with room for sums and scales
+void checkImageRange(const Scene& scene, const CompiledScene& compiled) {
+  const Camera& camera = scene.camera;
+  const double area = compiled.film.pixelAreaM2;
+  if (!std::isnormal(area) || area < kSmallestPixelAreaM2)
+    throw SceneError(fmt::format(
+        "{}: /camera/sensor: pixels of {:g} x {:g} m have an area of {:g} m², below {:g} m²: irradiance per "
+        "pixel would overflow or lose all precision; use a larger sensor or fewer pixels",
+        sceneName(scene), camera.sensorWidthM / camera.pixelsX, camera.sensorHeightM / camera.pixelsY, area,
+        kSmallestPixelAreaM2));
+  const double brightest = compiled.sampledPowerW / area * kLumensPerWatt * 2.1;
+  if (std::isfinite(brightest) && brightest < kBrightestImageValue) return;
+  const auto [light, pointer] = strongestLight(scene, compiled);
+  throw SceneError(fmt::format(
+      "{}: {}/power_w: {:g} W over pixels of {:g} m² can reach {:g} in XYZ, beyond the range of the image's float "
+      "channels (at most {:g}); use a smaller power_w or larger pixels",
+      sceneName(scene), pointer, light.powerW, area, brightest, kBrightestImageValue));
+}
+
 // Camera, spectrum, observer and seed constants of the kernel.
 void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
   const Camera& camera = scene.camera;
@@ -177,6 +215,17 @@ void filmConstants(const FilmLayout& film, device::TraceConstants& c) {
 
 }  // namespace
 
+void checkBeamScale(const Scene& scene, const CompiledScene& compiled, uint64_t beams) {
+  const double perCount = compiled.irradiancePerCount(beams);
+  // The smallest value a pixel can hold, one count, in the float image.
+  if (beams == 0 || (std::isfinite(perCount) && float(perCount) > 0.0f)) return;
+  const auto [light, pointer] = strongestLight(scene, compiled);
+  throw SceneError(fmt::format(
+      "{}: {}/power_w: {:g} W spread over {} beams gives {:g} W/m² per count, below the smallest float the image "
+      "can hold; use a larger power_w or fewer beams",
+      sceneName(scene), pointer, light.powerW, beams, perCount));
+}
+
 CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptions& options) {
   validateScene(scene);  // scenes built in code get the loader's guarantees too
   CompiledScene compiled;
@@ -184,6 +233,7 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   std::vector<LightReach> reaches;
   std::vector<double> selectWeights;
   compileLights(scene, options, compiled, reaches, selectWeights);
+  checkImageRange(scene, compiled);
   const auto lows = quantizeCdf(selectWeights);
   for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
   cameraConstants(scene, seed, compiled.device);

@@ -80,5 +80,8 @@ struct CompileOptions {
 // Throws SceneError (with the scene file's name) for scenes that cannot be
 // traced, e.g. when no light has power inside the spectrum range.
 CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptions& options = {});
+// Throws SceneError (naming the field) when one count of a render of `beams`
+// beams would underflow the float image. compileScene checks the upper end.
+void checkBeamScale(const Scene& scene, const CompiledScene& compiled, uint64_t beams);
 
 }  // namespace spectrace

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
+#include <string>
 
 #include "kernel/beam_kernel.h"
 
@@ -156,6 +158,60 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
   std::printf("%d scenes with a window smaller than the sensor; %d counted beams checked\n", windowed, beamsChecked);
   EXPECT_GT(windowed, 50);
   EXPECT_GT(beamsChecked, 100'000);
+}
+
+}  // namespace
+}  // namespace spectrace
+
+namespace spectrace {
+namespace {
+
+// Derived quantities out of range are refused before tracing, naming the
+// field to change, instead of NaN or inf pixels.
+std::string sceneErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ImageRange, PixelsTooSmallToResolveNameTheSensor) {
+  Scene scene = bareSensorScene(1e-310, 0.01, 4, 4);
+  scene.lights = {pointLight({0.0, 0.0, 0.1}, 1.0, *cieIlluminant("D65"))};
+  const std::string message = sceneErrorOf([&] { compileScene(scene, 1); });
+  EXPECT_NE(message.find("/camera/sensor"), std::string::npos) << message;
+}
+
+TEST(ImageRange, PowerBeyondTheFloatImageNamesThePowerField) {
+  for (double power : {1e38, 1e300}) {
+    Scene scene = bareSensorScene(0.01, 0.01, 4, 4);
+    Light weak = pointLight({0.0, 0.0, 0.1}, 1.0, *cieIlluminant("D65"));
+    Light strong = pointLight({0.0, 0.001, 0.1}, power, *cieIlluminant("D65"));
+    weak.label = "/lights/0";
+    strong.label = "/lights/1";
+    scene.lights = {weak, strong};
+    const std::string message = sceneErrorOf([&] { compileScene(scene, 1); });
+    EXPECT_NE(message.find("/lights/1/power_w"), std::string::npos) << power << ": " << message;
+  }
+  // A bright but representable scene is accepted.
+  Scene scene = bareSensorScene(0.01, 0.01, 4, 4);
+  scene.lights = {pointLight({0.0, 0.0, 0.1}, 1e20, *cieIlluminant("D65"))};
+  EXPECT_NO_THROW(compileScene(scene, 1));
+}
+
+TEST(ImageRange, OneCountBelowTheSmallestFloatNamesThePowerField) {
+  Scene scene = bareSensorScene(0.01, 0.01, 4, 4);
+  scene.lights = {pointLight({0.0, 0.0, 0.1}, 1e-60, *cieIlluminant("D65"))};
+  const CompiledScene plan = compileScene(scene, 1);
+  const std::string message = sceneErrorOf([&] { checkBeamScale(scene, plan, 100'000'000); });
+  EXPECT_NE(message.find("/lights/0/power_w"), std::string::npos) << message;
+  EXPECT_NO_THROW(checkBeamScale(scene, compileScene([&] {
+    Scene dim = scene;
+    dim.lights[0].powerW = 1e-20;
+    return dim;
+  }(), 1), 100'000'000));
 }
 
 }  // namespace

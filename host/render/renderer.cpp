@@ -45,6 +45,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   RenderResult result;
   result.plan = compileScene(scene, options.seed, options.plan);
   const CompiledScene& plan = result.plan;
+  checkBeamScale(scene, plan, options.beams);
   const auto tracer = device.makeTracer(
       plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads});
   result.deviceKind = tracer->kind();

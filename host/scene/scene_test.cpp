@@ -417,6 +417,9 @@ TEST_F(SceneTest, SpectrumRangeErrors) {
   expectMutationError("/spectrum/bins", "94", "/spectrum/bins", {"integer", "\"94\""});
   expectMutationError("/spectrum/min_nm", -1, "/spectrum/min_nm", {"> 0", "got -1"});
   expectMutationError("/spectrum/min_nm", 0, "/spectrum/min_nm", {"> 0"});
+  // A range reaching down to 1e-300 nm is refused for what it is, not by
+  // a blackbody whose radiance underflows there.
+  expectMutationError("/spectrum/min_nm", 1e-300, "/spectrum/min_nm", {"at least 1 nm"});
   expectMutationError("/spectrum/max_nm", 360, "/spectrum/max_nm", {"min_nm", "less than max_nm"});
   expectMutationError("/spectrum/max_nm", 300, "/spectrum/max_nm", {"less than max_nm"});
   expectMutationError("/spectrum", 5, "/spectrum", {"must be an object"});

@@ -170,6 +170,8 @@ void validateSpectrum(const SpectrumRange& range, const SceneChecker& c) {
   for (const auto& [key, nm] : {std::pair{"min_nm", range.minNm}, std::pair{"max_nm", range.maxNm}}) {
     const std::string ptr = std::string("/spectrum/") + key;
     checkPositive(c, ptr, nm);
+    if (nm < kMinWavelengthNm)
+      c.fail(ptr, fmt::format("must be at least {} nm (got {})", jf::fmtNum(kMinWavelengthNm), c.got(ptr, nm)));
     if (nm > kMaxWavelengthNm)
       c.fail(ptr, fmt::format("must be at most {} nm (got {})", jf::fmtNum(kMaxWavelengthNm), c.got(ptr, nm)));
   }

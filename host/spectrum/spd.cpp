@@ -46,6 +46,13 @@ Spd validated(std::vector<double> lambdaNm, std::vector<double> value, const std
   }
   Spd s{std::move(lambdaNm), std::move(value), 0.0};
   s.fullIntegral = s.integral();
+  if (std::isinf(s.fullIntegral)) {
+    // Values near the double range overflow the integral. An SPD gives only
+    // a shape (power_w sets the scale), so scale it by an exact power of two.
+    const int shift = std::ilogb(*std::max_element(s.value.begin(), s.value.end()));
+    for (double& v : s.value) v = std::ldexp(v, -shift);
+    s.fullIntegral = s.integral();
+  }
   if (!(s.fullIntegral > 0.0))
     throw SpdError(fmt::format("{}SPD has no power (all values are zero)", context));
   return s;

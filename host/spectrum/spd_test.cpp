@@ -93,6 +93,18 @@ TEST(SpdTable, IntegralIsExactTrapezoidAndEvaluateInterpolates) {
   EXPECT_EQ(s.evaluate(kNaN), 0.0);
 }
 
+TEST(SpdTable, ValuesNearTheDoubleRangeKeepTheirShapeAndAFiniteIntegral) {
+  // 1e308 overflows the trapezoid's sum; only the shape matters, so the table
+  // is scaled by an exact power of two.
+  const Spd s = makeTabulatedSpd({400.0, 500.0, 600.0}, {1e308, 1.5e308, 0.5e308});
+  ASSERT_TRUE(std::isfinite(s.fullIntegral));
+  EXPECT_GT(s.fullIntegral, 0.0);
+  EXPECT_EQ(s.value[1] / s.value[0], 1.5e308 / 1e308);
+  EXPECT_EQ(s.value[2] / s.value[0], 0.5e308 / 1e308);
+  // Ordinary tables are left exactly as given.
+  EXPECT_EQ(makeTabulatedSpd({400.0, 410.0}, {3.0, 5.0}).value[1], 5.0);
+}
+
 TEST(SpdTable, RejectsInvalidTables) {
   expectSpdError([] { makeTabulatedSpd({400, 410, 405}, {1, 1, 1}); },
                  {"row 3", "strictly increasing", "405 nm after 410 nm"});
