@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace spectrace::cli {
 
 struct RenderCommand {
-  std::filesystem::path scene;
-  std::optional<std::filesystem::path> output;  // default out/<scene stem>.exr
+  std::vector<std::filesystem::path> scenes;    // rendered one after another on one device
+  // default out/<scene stem>.exr; with several scenes, a folder (DIR/ or an
+  // existing directory) that holds <scene stem>.exr
+  std::optional<std::filesystem::path> output;
   std::optional<uint64_t> beams;                // default: the scene's render.beams
   std::optional<uint64_t> seed;                 // default: the scene's render.seed
   uint64_t firstBeam = 0;
@@ -27,6 +30,18 @@ struct RenderCommand {
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 
 int runDevices();
+
+struct BatchCommand {
+  std::filesystem::path jobs;                   // JSON Lines job file
+  std::string device = "auto";
+  std::optional<std::filesystem::path> outDir;  // relative outputs resolve here (default: the job file's folder)
+  bool skipExisting = false;                    // skip jobs whose EXR holds all their beams
+  bool failFast = false;                        // stop at the first failed job (default: keep going)
+  bool quiet = false;
+  bool png = true;
+};
+// Exit code 0 when every job rendered (or was skipped), 2 when any failed.
+int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel);
 
 struct BenchCommand {
   uint64_t beams = uint64_t(1) << 25;   // throughput section, per device

@@ -20,8 +20,10 @@ int main(int argc, char** argv) {
 
   RenderCommand render;
   auto* renderCmd = app.add_subcommand("render", "Render a scene file to OpenEXR (and a PNG preview)");
-  renderCmd->add_option("scene", render.scene, "Scene file (JSON)")->required();
-  renderCmd->add_option("-o,--output", render.output, "Output EXR (default out/<scene>.exr)");
+  renderCmd->add_option("scene", render.scenes, "Scene files (JSON), rendered one after another on one device")
+      ->required();
+  renderCmd->add_option("-o,--output", render.output,
+                        "Output EXR (default out/<scene>.exr); with several scenes, a folder (DIR/)");
   renderCmd->add_option("--beams", render.beams, "Number of beams (default: the scene's render.beams)");
   renderCmd->add_option("--seed", render.seed, "RNG seed (default: the scene's render.seed)");
   renderCmd->add_option("--first-beam", render.firstBeam, "Index of the first beam (to split a render into parts)");
@@ -40,6 +42,19 @@ int main(int argc, char** argv) {
                       "Analog emission (the reference): do not aim beams at the pinhole or sensor");
   renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
                         "Write the image so far at this interval (0: never)");
+
+  BatchCommand batch;
+  auto* batchCmd = app.add_subcommand("batch", "Render the jobs of a JSON Lines job file on one device");
+  batchCmd->add_option("jobs", batch.jobs, "Job file (JSON Lines: one job per line)")->required();
+  batchCmd->add_option("--device", batch.device, "auto, gpu (any Vulkan device, lavapipe included) or cpu")
+      ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
+  batchCmd->add_option("--out-dir", batch.outDir, "Folder relative outputs resolve against (default: the job file's)");
+  batchCmd->add_flag("--skip-existing", batch.skipExisting, "Skip jobs whose EXR exists and holds all their beams");
+  bool keepGoingFlag = false;
+  auto* keepGoing = batchCmd->add_flag("--keep-going", keepGoingFlag, "Go on after a failed job (the default)");
+  batchCmd->add_flag("--fail-fast", batch.failFast, "Stop at the first failed job")->excludes(keepGoing);
+  batchCmd->add_flag("!--no-png", batch.png, "Do not write PNG previews");
+  batchCmd->add_flag("-q,--quiet", batch.quiet, "Print only errors");
 
   auto* devicesCmd = app.add_subcommand("devices", "List Vulkan devices and the limits that matter here");
 
@@ -64,6 +79,7 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, onSignal);
   try {
     if (renderCmd->parsed()) return runRender(render, gCancel);
+    if (batchCmd->parsed()) return runBatch(batch, gCancel);
     if (devicesCmd->parsed()) return runDevices();
     if (benchCmd->parsed()) return runBench(bench, gCancel);
   } catch (const std::exception& e) {

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "camera/camera.h"
 #include "lights/light.h"
 #include "json/scene_error.h"
@@ -50,6 +52,15 @@ void validateScene(const Scene& scene);
 
 // Parses JSON text; `file` is used for messages and relative paths.
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& file);
+// The same from a JSON value already read (e.g. a scene file with fields
+// overridden by a batch job): the same schema and validator; `file` names
+// the scene in messages and is where relative CSV paths resolve.
+// sourceSha256 is the digest of the value's compact dump.
+Scene parseSceneJson(const nlohmann::json& root, const std::filesystem::path& file);
+// A scene file's bytes, and its JSON (comments tolerated, repeated keys
+// refused); errors are SceneError "<file>: <what>".
+std::string readSceneText(const std::filesystem::path& file);
+nlohmann::json readSceneJson(const std::filesystem::path& file);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
 std::string sceneSha256Hex(std::string_view bytes);
 

@@ -166,9 +166,10 @@ RenderSettings parseRender(const jf::Source& c, const Json& v, const std::string
 
 }  // namespace
 
-Scene parseScene(const std::string& jsonText, const fs::path& file) {
+namespace {
+
+Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
   const jf::Source c = sourceFor(file);
-  Json root = jf::parseJson(c, jsonText);
   static const Keys kTop = {"spectrum", "observer", "camera", "lights", "render"};
   if (!root.is_object()) c.fail("", fmt::format("the top level must be a JSON object (got {})", describe(root)));
   checkObject(c, root, "", kTop, "the top level");
@@ -195,12 +196,30 @@ Scene parseScene(const std::string& jsonText, const fs::path& file) {
     scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
 
   if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
-  scene.sourceSha256 = sceneSha256Hex(jsonText);
+  scene.sourceSha256 = std::move(sha256);
   validateScene(scene, checker);
   return scene;
 }
 
-Scene loadScene(const fs::path& file) {
+}  // namespace
+
+Scene parseScene(const std::string& jsonText, const fs::path& file) {
+  const Json root = jf::parseJson(sourceFor(file), jsonText);
+  return parseRoot(root, file, sceneSha256Hex(jsonText));
+}
+
+Scene parseSceneJson(const nlohmann::json& root, const fs::path& file) {
+  return parseRoot(root, file, sceneSha256Hex(root.dump()));
+}
+
+nlohmann::json readSceneJson(const fs::path& file) {
+  const jf::Source c = sourceFor(file);
+  return jf::parseJson(c, readSceneText(file));
+}
+
+Scene loadScene(const fs::path& file) { return parseScene(readSceneText(file), file); }
+
+std::string readSceneText(const fs::path& file) {
   const jf::Source c = sourceFor(file);
   std::error_code ec;
   auto status = fs::status(file, ec);
@@ -210,7 +229,7 @@ Scene loadScene(const fs::path& file) {
   if (!in) c.fail("", fmt::format("cannot open the scene file ({})", std::strerror(errno)));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) c.fail("", "error while reading the scene file");
-  return parseScene(text, file);
+  return text;
 }
 
 }  // namespace spectrace

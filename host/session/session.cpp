@@ -1,0 +1,93 @@
+#include "session/session.h"
+
+#include <chrono>
+#include <fmt/format.h>
+#include <system_error>
+
+namespace spectrace {
+
+ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
+                             uint64_t firstBeam, uint64_t beamsDone, double wallSeconds) {
+  ImageMetadata meta;
+  meta.strings["spectrace:beams"] = std::to_string(beamsDone);
+  meta.strings["spectrace:first_beam"] = std::to_string(firstBeam);
+  meta.strings["spectrace:seed"] = std::to_string(seed);
+  meta.strings["spectrace:device"] = device;
+  meta.strings["spectrace:scene_file"] = scene.sourcePath.string();
+  meta.strings["spectrace:scene_sha256"] = scene.sourceSha256;
+  meta.strings["spectrace:observer"] = scene.observer;
+  meta.strings["spectrace:units"] =
+      "R,G,B: linear sRGB (Rec. 709, D65) of XYZ; XYZ: CIE XYZ with Y in lux; irradiance.E: W/m^2 over all bins";
+  meta.numbers["spectrace:wall_time_s"] = wallSeconds;
+  meta.numbers["spectrace:spectrum_min_nm"] = scene.spectrum.minNm;
+  meta.numbers["spectrace:spectrum_max_nm"] = scene.spectrum.maxNm;
+  meta.numbers["spectrace:spectrum_bins"] = scene.spectrum.bins;
+  meta.numbers["spectrace:exposure_s"] = scene.camera.exposureS;
+  meta.strings["spectrace:sampling"] = aimed ? "aimed at the camera, weighted" : "analog";
+  return meta;
+}
+
+bool outputIsComplete(const std::filesystem::path& exr, uint64_t beams) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(exr, ec)) return false;
+  try {
+    const ExrContents contents = readExr(exr);
+    const auto it = contents.meta.strings.find("spectrace:beams");
+    if (it == contents.meta.strings.end()) return false;
+    size_t used = 0;
+    const unsigned long long done = std::stoull(it->second, &used);
+    return used == it->second.size() && done == beams;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+Session::Session(DeviceChoice device, const std::function<void(const std::string&)>& log)
+    : device_(Device::open(device, log)) {}
+
+Session::~Session() = default;
+
+namespace {
+
+void prepareFolder(const std::filesystem::path& output) {
+  const auto folder = output.parent_path();
+  if (folder.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw OutputError(fmt::format("cannot create the folder {} for {}: {}", folder.string(), output.string(), ec.message()));
+}
+
+}  // namespace
+
+RenderResult Session::render(const RenderJob& job) const {
+  RenderOptions options = job.options;
+  options.beams = job.beamCount();
+  options.seed = job.seedValue();
+  const auto& output = job.output;
+  prepareFolder(output);
+  const auto start = std::chrono::steady_clock::now();
+  auto onCheckpoint = options.onCheckpoint;
+  // A checkpoint is a complete, valid image of the beams finished so far.
+  options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeExr(output, image,
+             renderMetadata(job.scene, device, options.plan.aim, options.seed, options.firstBeam, done, seconds));
+    if (onCheckpoint) onCheckpoint(image, done, device);
+  };
+  try {
+    RenderResult result = spectrace::render(job.scene, options, *device_);
+    writeExr(output, result.image,
+             renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
+                            result.beamsTraced, result.wallSeconds));
+    if (job.png) {
+      auto png = output;
+      png.replace_extension(".png");
+      writePngPreview(png, result.image);
+    }
+    return result;
+  } catch (const ImageIoError& e) {
+    throw OutputError(e.what());
+  }
+}
+
+}  // namespace spectrace

@@ -1,0 +1,67 @@
+#pragma once
+// Many renders in one process: a Session opens a Device once and renders
+// RenderJobs on it, writing each job's EXR (and PNG preview). The CLI's
+// `render` and `batch` verbs are thin clients; programs can use it directly.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "backend/device.h"
+#include "io/image.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace spectrace {
+
+// One render: a parsed scene, where its image goes and how it is traced.
+struct RenderJob {
+  Scene scene;
+  std::filesystem::path output;           // the EXR; the PNG goes beside it
+  std::optional<uint64_t> beams;          // default: the scene's render.beams
+  std::optional<uint64_t> seed;           // default: the scene's render.seed
+  bool png = true;
+  // Everything else about the render (shortcuts, threads, callbacks).
+  // beams, seed and device are the job's and the session's.
+  RenderOptions options;
+
+  uint64_t beamCount() const { return beams.value_or(scene.render.beams); }
+  uint64_t seedValue() const { return seed.value_or(scene.render.seed); }
+};
+
+// Writing a job's output failed (the render itself was fine).
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Session {
+ public:
+  // Opens the device once (auto: a GPU if any, else the CPU reference).
+  explicit Session(DeviceChoice device, const std::function<void(const std::string&)>& log = {});
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const Device& device() const { return *device_; }
+
+  // Renders the job on the session's device and writes its outputs
+  // (creating the output's folder). Throws OutputError when they cannot be
+  // written; the result is returned either way only on success.
+  RenderResult render(const RenderJob& job) const;
+
+ private:
+  std::unique_ptr<Device> device_;
+};
+
+// The EXR header the renders write (spectrace:beams etc.).
+ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
+                             uint64_t firstBeam, uint64_t beamsDone, double wallSeconds);
+// Whether `exr` is a complete render of `beams` beams: it reads, and its
+// spectrace:beams attribute says so. False for a missing or broken file.
+bool outputIsComplete(const std::filesystem::path& exr, uint64_t beams);
+
+}  // namespace spectrace
