@@ -110,7 +110,8 @@ void readLine(const fs::path& file, const Line& line, const std::optional<fs::pa
     if (!job.is_object()) c.fail("", fmt::format("a job must be a JSON object (got {})", jf::describe(job)));
     jf::checkObject(c, job, "", {"scene", "output", "beams", "seed", "set", "sweep"}, "a job");
     const std::string sceneName = jf::getString(c, jf::require(c, job, "", "scene", " (the scene file)"), "/scene");
-    const fs::path scenePath = fs::path(sceneName).is_absolute() ? fs::path(sceneName) : c.dir / sceneName;
+    const fs::path scenePath =
+        (fs::path(sceneName).is_absolute() ? fs::path(sceneName) : c.dir / sceneName).lexically_normal();
     std::optional<uint64_t> beams, seed;
     if (auto* x = jf::find(job, "beams")) beams = jf::getU64(c, *x, "/beams", 1);
     if (auto* x = jf::find(job, "seed")) seed = jf::getU64(c, *x, "/seed", 0);
