@@ -58,6 +58,12 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+    for (const RenderJob& other : jobs)
+      if (other.output == job.output) {
+        std::fprintf(stderr, "spectrace: error: %s and %s would both be written to %s\n",
+                     other.scene.sourcePath.c_str(), path.c_str(), job.output.c_str());
+        return 2;
+      }
     jobs.push_back(std::move(job));
   }
 
