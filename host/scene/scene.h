@@ -34,6 +34,8 @@ struct Scene {
   std::vector<Light> lights;
   RenderSettings render;
   std::string observer = "CIE1931_2";
+  // "output": {"spectral": true}: the EXR also holds one channel per bin.
+  bool outputSpectral = false;
   std::filesystem::path sourcePath;  // empty for scenes built in code
   std::string sourceSha256;          // hex digest of the file's bytes
 };

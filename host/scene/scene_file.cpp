@@ -12,6 +12,7 @@
 //              pinhole{distance_m, radius_m}, exposure_s}  required
 //   lights    [ {type, name, power_w, spd, ...type fields} ] required, non-empty
 //   render    {beams, seed}                                optional
+//   output    {spectral}                                   optional
 #include "scene/scene.h"
 
 #include <algorithm>
@@ -164,13 +165,23 @@ RenderSettings parseRender(const jf::Source& c, const Json& v, const std::string
   return r;
 }
 
+// What the EXR holds beyond the RGB, XYZ and irradiance channels.
+bool parseOutputSpectral(const jf::Source& c, const Json& v, const std::string& p) {
+  checkObject(c, v, p, {"spectral"}, "output");
+  const Json* x = find(v, "spectral");
+  if (!x) return false;
+  if (!x->is_boolean())
+    c.fail(child(p, "spectral"), fmt::format("must be true or false (got {})", describe(*x)));
+  return x->get<bool>();
+}
+
 }  // namespace
 
 namespace {
 
 Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
   const jf::Source c = sourceFor(file);
-  static const Keys kTop = {"spectrum", "observer", "camera", "lights", "render"};
+  static const Keys kTop = {"spectrum", "observer", "camera", "lights", "render", "output"};
   if (!root.is_object()) c.fail("", fmt::format("the top level must be a JSON object (got {})", describe(root)));
   checkObject(c, root, "", kTop, "the top level");
 
@@ -196,6 +207,7 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
     scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
 
   if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
+  if (auto* x = find(root, "output")) scene.outputSpectral = parseOutputSpectral(c, *x, "/output");
   scene.sourceSha256 = std::move(sha256);
   validateScene(scene, checker);
   return scene;

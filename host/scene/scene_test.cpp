@@ -154,6 +154,7 @@ TEST_F(SceneTest, ExampleParsesWithTheRightValues) {
   EXPECT_EQ(s.camera.exposureS, 1.0);
   EXPECT_EQ(s.render.beams, 100000000u);
   EXPECT_EQ(s.render.seed, 1u);
+  EXPECT_FALSE(s.outputSpectral);
   EXPECT_EQ(s.observer, "CIE1931_2");
   EXPECT_EQ(s.sourcePath, file);
   EXPECT_EQ(s.sourceSha256, sceneSha256Hex(text));
@@ -365,6 +366,20 @@ TEST_F(SceneTest, FileLevelErrors) {
                   "/camera/position", {"duplicate key", "\"position\""});
   expectErrorText(R"({"lights": [{"type": "point"}, {"type": "point", "type": "spot"}]})", "/lights/1/type",
                   {"duplicate key"});
+}
+
+TEST_F(SceneTest, OutputSpectral) {
+  json j = exampleScene();
+  j["output"] = {{"spectral", true}};
+  EXPECT_TRUE(load(j).outputSpectral);
+  j["output"] = {{"spectral", false}};
+  EXPECT_FALSE(load(j).outputSpectral);
+  j["output"] = json::object();
+  EXPECT_FALSE(load(j).outputSpectral);
+  expectMutationError("/output", 1, "/output", {"output"});
+  expectMutationError("/output", {{"spectral", 1}}, "/output/spectral", {"true or false", "got"});
+  expectMutationError("/output", {{"spectral", "yes"}}, "/output/spectral", {"true or false"});
+  expectMutationError("/output", {{"spectra", true}}, "/output/spectra", {"unknown key", "spectral"});
 }
 
 TEST_F(SceneTest, UnknownKeysAnywhere) {
