@@ -54,6 +54,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.cancel = &cancel;
     options.checkpointSeconds = command.checkpointSeconds;
     options.plan.trimSpectrum = !command.fullSpectrum;
+    options.spectral = command.spectral;
     options.plan.trimPixels = !command.fullSensor;
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;

@@ -23,6 +23,7 @@ struct RenderCommand {
   bool quiet = false;
   double checkpointSeconds = 60.0;
   bool fullSpectrum = false;   // store every bin, not only those the lights reach
+  bool spectral = false;       // spectral EXR channels (also when the scene's output.spectral is true)
   bool fullSensor = false;     // store every pixel, not only those beams can reach
   bool general = false;        // the general trace pipeline, not one specialised to the scene
   bool noAim = false;          // analog emission: beams in every direction the lights emit

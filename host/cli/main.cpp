@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
   renderCmd->add_flag("--full-spectrum", render.fullSpectrum,
                       "Store every wavelength bin on the device, not only those the lights can reach");
+  renderCmd->add_flag("--spectral", render.spectral,
+                      "Also write one EXR channel per wavelength bin, S0.<nm>nm in W.m^-2.nm^-1 "
+                      "(default: the scene's output.spectral)");
   renderCmd->add_flag("--full-sensor", render.fullSensor,
                       "Store every pixel on the device, not only those the beams can reach");
   renderCmd->add_flag("--general-pipeline", render.general,

@@ -1,6 +1,9 @@
 #include "film/develop.h"
 
+#include <cmath>
+
 #include "device_shared.h"
+#include "film/pixel_variance.h"
 
 namespace spectrace {
 
@@ -35,6 +38,37 @@ RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParame
     image.irradiance[p] = float(double(total) * parameters.irradiancePerCount);
   }
   return image;
+}
+
+std::vector<float> developSpectrum(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                                   double binWidthNm) {
+  const double perCount = parameters.irradiancePerCount / binWidthNm;
+  std::vector<float> spectrum(histogram.counts.size());
+  for (size_t i = 0; i < spectrum.size(); ++i) spectrum[i] = float(double(histogram.counts[i]) * perCount);
+  return spectrum;
+}
+
+std::vector<double> binCentresNm(double lambdaMinNm, double lambdaMaxNm, uint32_t bins) {
+  std::vector<double> centres(bins);
+  const double width = (lambdaMaxNm - lambdaMinNm) / double(bins);
+  for (uint32_t b = 0; b < bins; ++b) centres[b] = lambdaMinNm + (double(b) + 0.5) * width;
+  return centres;
+}
+
+std::vector<float> developIrradianceError(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                                          uint64_t beams) {
+  const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
+  std::vector<float> error(pixels, 0.0f);
+  if (beams == 0) return error;
+  const std::vector<double> relativeVariance = estimatedRelativeVariance(histogram, beams);
+  for (size_t p = 0; p < pixels; ++p) {
+    if (!std::isfinite(relativeVariance[p])) continue;  // no counts: no irradiance and no estimate
+    uint64_t total = 0;
+    for (uint32_t b = 0; b < histogram.bins; ++b) total += histogram.counts[p * histogram.bins + b];
+    const double irradiance = double(total) * parameters.irradiancePerCount;
+    error[p] = float(std::sqrt(relativeVariance[p]) * irradiance);
+  }
+  return error;
 }
 
 }  // namespace spectrace

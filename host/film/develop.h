@@ -2,6 +2,7 @@
 // Histogram -> image on the host (double precision): used by --device cpu
 // and as the reference for the resolve shader.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -26,5 +27,21 @@ struct ResolveParameters {
 };
 
 RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters);
+
+// Spectral irradiance in W m^-2 nm^-1 of every pixel and bin of the
+// histogram, [pixel][bin] like its counts: count x irradiancePerCount /
+// binWidthNm, in double then rounded to float. So a pixel's bins times the
+// bin width sum to its irradiance. Bins the device did not store are 0.
+std::vector<float> developSpectrum(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                                   double binWidthNm);
+// The centre of each bin in nm (bins of equal width from lambdaMinNm).
+std::vector<double> binCentresNm(double lambdaMinNm, double lambdaMaxNm, uint32_t bins);
+
+// Estimated standard error of each pixel's irradiance in W/m^2, from the
+// render's own counts: sqrt(estimatedRelativeVariance) x irradiance, with
+// the irradiance computed in double from the counts. 0 for an empty pixel
+// (no counts, no estimate) and for beams == 0.
+std::vector<float> developIrradianceError(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                                          uint64_t beams);
 
 }  // namespace spectrace

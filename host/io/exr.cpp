@@ -9,9 +9,14 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <set>
 #include <string>
+#include <utility>
 
 #include "io/atomic_file.h"
 #include "io/image.h"
@@ -63,11 +68,39 @@ class FdOStream final : public Imf::OStream {
   std::string error_;
 };
 
+constexpr const char* kErrorChannel = "error.E";
+// The spectral layout's header attributes (Fichet, Pacanowski, Wilkie 2021).
+constexpr const char* kSpectralLayoutVersion = "spectralLayoutVersion";
+constexpr const char* kEmissiveUnits = "emissiveUnits";
+
+// The wavelength of a spectral layout channel name "S0.<nm>nm", or a
+// negative value when the name is not one.
+double wavelengthOfSpectralChannel(const std::string& name) {
+  const std::string prefix = "S0.", suffix = "nm";
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return -1.0;
+  std::string number = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  std::replace(number.begin(), number.end(), ',', '.');
+  char* end = nullptr;
+  const double nm = std::strtod(number.c_str(), &end);
+  return end == number.c_str() + number.size() && nm > 0.0 ? nm : -1.0;
+}
+
 [[noreturn]] void readFail(const std::filesystem::path& path, const std::string& why) {
   throw ImageIoError("cannot read EXR " + path.string() + ": " + why);
 }
 
 }  // namespace
+
+std::string spectralChannelName(double wavelengthNm) {
+  char text[64];
+  std::snprintf(text, sizeof text, "S0.%.6fnm", wavelengthNm);  // "C" locale: '.' as separator
+  std::string name = text;
+  std::replace(name.begin(), name.end(), '.', ',');
+  name[2] = '.';  // the layer separator after "S0" stays a dot
+  return name;
+}
 
 void writeExr(const std::filesystem::path& path, const RenderImage& image, const ImageMetadata& meta) {
   const auto writeError = [&](const std::string& why) {
@@ -89,6 +122,20 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
   checkSize("rgb", image.rgb.size(), 3);
   checkSize("xyz", image.xyz.size(), 3);
   checkSize("irradiance", image.irradiance.size(), 1);
+  if (!image.irradianceError.empty()) checkSize("irradianceError", image.irradianceError.size(), 1);
+  const std::size_t bins = image.spectralBinCentresNm.size();
+  std::vector<std::string> spectralNames;
+  if (bins > 0 || !image.spectralIrradiance.empty()) {
+    if (bins == 0) throw writeError("spectralIrradiance is given without spectralBinCentresNm");
+    checkSize("spectralIrradiance", image.spectralIrradiance.size(), bins);
+    std::set<std::string> distinct;
+    for (const double nm : image.spectralBinCentresNm) {
+      if (!(nm > 0.0)) throw writeError("spectral bin centre " + std::to_string(nm) + " nm is not positive");
+      spectralNames.push_back(spectralChannelName(nm));
+      if (!distinct.insert(spectralNames.back()).second)
+        throw writeError("two spectral bins share the channel name " + spectralNames.back());
+    }
+  }
 
   try {
     Imf::Header header(image.width, image.height);  // data window (0,0)..(w-1,h-1), INCREASING_Y
@@ -114,6 +161,18 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
       char* base = reinterpret_cast<char*>(const_cast<float*>(data.data() + ch.index));
       const std::size_t xStride = sizeof(float) * static_cast<std::size_t>(ch.components);
       frame.insert(ch.name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * static_cast<std::size_t>(image.width)));
+    }
+    const auto insertChannel = [&](const std::string& name, const float* first, std::size_t components) {
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      char* base = reinterpret_cast<char*>(const_cast<float*>(first));
+      const std::size_t xStride = sizeof(float) * components;
+      frame.insert(name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * static_cast<std::size_t>(image.width)));
+    };
+    if (!image.irradianceError.empty()) insertChannel(kErrorChannel, image.irradianceError.data(), 1);
+    if (bins > 0) {
+      addAttribute(kSpectralLayoutVersion, Imf::StringAttribute("1.0"));
+      addAttribute(kEmissiveUnits, Imf::StringAttribute("W.m^-2.nm^-1"));
+      for (std::size_t b = 0; b < bins; ++b) insertChannel(spectralNames[b], image.spectralIrradiance.data() + b, bins);
     }
 
     // Only now touch the disk; an exception from here on removes the temp
@@ -166,6 +225,24 @@ ExrContents readExr(const std::filesystem::path& path) {
       // out-of-range pointer arithmetic; stored HALF/UINT channels convert.
       frame.insert(ch.name, Imf::Slice::Make(Imf::FLOAT, data.data() + ch.index, dw,
                                              sizeof(float) * static_cast<std::size_t>(ch.components)));
+    }
+    if (header.channels().findChannel(kErrorChannel)) {
+      image.irradianceError.resize(pixels);
+      frame.insert(kErrorChannel, Imf::Slice::Make(Imf::FLOAT, image.irradianceError.data(), dw, sizeof(float)));
+    }
+    // Spectral layout channels, in order of wavelength.
+    std::vector<std::pair<double, std::string>> spectral;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+      const double nm = wavelengthOfSpectralChannel(it.name());
+      if (nm > 0.0) spectral.emplace_back(nm, it.name());
+    }
+    std::sort(spectral.begin(), spectral.end());
+    const std::size_t bins = spectral.size();
+    image.spectralIrradiance.resize(pixels * bins);
+    for (std::size_t b = 0; b < bins; ++b) {
+      image.spectralBinCentresNm.push_back(spectral[b].first);
+      frame.insert(spectral[b].second, Imf::Slice::Make(Imf::FLOAT, image.spectralIrradiance.data() + b, dw,
+                                                        sizeof(float) * bins));
     }
     in.setFrameBuffer(frame);
     in.readPixels(dw.min.y, dw.max.y);

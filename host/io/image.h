@@ -17,6 +17,13 @@ struct RenderImage {
   std::vector<float> rgb;         // 3 per pixel, linear sRGB, may be negative
   std::vector<float> xyz;         // 3 per pixel, CIE XYZ, Y in lux
   std::vector<float> irradiance;  // 1 per pixel, W/m² summed over all bins
+  // 1 per pixel, W/m²: the estimated standard error of `irradiance`; empty
+  // when unknown (then no error.E channel is written).
+  std::vector<float> irradianceError;
+  // Optional spectral block: the bin centres (nm) and, per pixel, one
+  // spectral irradiance per bin (W m⁻² nm⁻¹, [pixel][bin]). Empty: none.
+  std::vector<double> spectralBinCentresNm;
+  std::vector<float> spectralIrradiance;
 };
 
 // Header attributes. Strings hold exact values (e.g. 64-bit beam counts).
@@ -29,10 +36,18 @@ struct ImageIoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Channels: R, G, B (linear sRGB), XYZ.X, XYZ.Y, XYZ.Z, irradiance.E.
+// Channels: R, G, B (linear sRGB), XYZ.X, XYZ.Y, XYZ.Z, irradiance.E; and
+// error.E when the image has irradianceError; and with a spectral block,
+// one channel per bin in the spectral OpenEXR layout of Fichet, Pacanowski
+// and Wilkie (JCGT 10(3), 2021): "S0.<nm>nm" (spectralChannelName), with
+// the header attributes spectralLayoutVersion = "1.0" and emissiveUnits =
+// "W.m^-2.nm^-1".
 // Written to a temporary file beside `path` and renamed, so an interrupted
 // write never leaves a truncated image.
 void writeExr(const std::filesystem::path& path, const RenderImage& image, const ImageMetadata& meta);
+// "S0.552,500000nm" for 552.5: the layout's name of an emissive (Stokes 0)
+// channel at that wavelength, a comma as decimal separator, 6 decimals.
+std::string spectralChannelName(double wavelengthNm);
 struct ExrContents {
   RenderImage image;
   ImageMetadata meta;

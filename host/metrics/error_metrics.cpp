@@ -33,37 +33,6 @@ std::array<double, 2> xyOf(const std::array<double, 3>& xyz) {
 
 }  // namespace
 
-std::vector<double> estimatedRelativeVariance(const SpectralHistogram& histogram, uint64_t beams) {
-  if (beams == 0) throw std::invalid_argument("estimatedRelativeVariance: beams must be > 0");
-  const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
-  if (histogram.counts.size() != pixels * histogram.bins ||
-      histogram.squaredWeightSums.size() != (histogram.isWeighted() ? pixels : 0))
-    throw std::invalid_argument("estimatedRelativeVariance: histogram counts do not match its shape");
-  std::vector<double> out(pixels);
-  const double n = double(beams);
-  const double units = double(histogram.unitsPerBeam);
-  for (size_t p = 0; p < pixels; ++p) {
-    uint64_t c = 0;
-    for (uint32_t b = 0; b < histogram.bins; ++b) c += histogram.counts[p * histogram.bins + b];
-    if (double(c) > n * units)
-      throw std::invalid_argument("estimatedRelativeVariance: pixel " + std::to_string(p) + " has " +
-                                  std::to_string(c) + " counts, more than the " + std::to_string(beams) +
-                                  " beams can carry");
-    if (c == 0) {
-      out[p] = kNaN;
-    } else if (!histogram.isWeighted()) {
-      // 1/C - 1/N = (N - C) / (C N), computed in this form so C == N gives 0 exactly.
-      out[p] = double(beams - c) / (double(c) * n);
-    } else {
-      // Weighted: with S1 = sum of weight ratios and S2 = sum of their
-      // squares, Var/E^2 = (S2/N - (S1/N)^2) / (N (S1/N)^2) = S2/S1^2 - 1/N.
-      const double s1 = double(c) / units, s2 = double(histogram.squaredWeightSums[p]) / units;
-      out[p] = std::max(0.0, s2 / (s1 * s1) - 1.0 / n);
-    }
-  }
-  return out;
-}
-
 ErrorMetrics computeErrorMetrics(const RenderImage& render, const ReferenceImage& reference,
                                  const std::vector<double>& estimatedRelVariance) {
   if (render.width != reference.width || render.height != reference.height || render.width < 0 ||

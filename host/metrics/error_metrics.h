@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "film/pixel_variance.h"
 #include "film/spectral_histogram.h"
 #include "io/image.h"
 
@@ -71,16 +72,8 @@ struct ErrorMetrics {
   double honesty = 0.0;
 };
 
-// Per-pixel relative variance of the irradiance estimated from the counts
-// (the irradiance is irradiancePerCount x the pixel's total count). A pixel's
-// total count C out of N = `beams` beams is binomial(N, p), so
-// Var(E)/E^2 = (1 - p)/(N p); with p estimated by C/N: relVar = 1/C - 1/N.
-// Weighted histograms (aimed area lights) use the squared-weight sums:
-// relVar = S2/S1^2 - 1/N over the pixel's weight ratios, which reduces to the
-// binomial form when every ratio is 1.
-// C = 0: undefined, NaN (computeErrorMetrics skips and counts such pixels).
-// Throws std::invalid_argument if beams == 0 or a pixel's count exceeds it.
-std::vector<double> estimatedRelativeVariance(const SpectralHistogram& histogram, uint64_t beams);
+// estimatedRelativeVariance (the render's own per-pixel error estimate) is
+// film's: film/pixel_variance.h.
 
 // `estimatedRelVariance`: one per pixel (NaN where unknown), or empty for none.
 // Throws std::invalid_argument if the images' shapes or buffer sizes differ.

@@ -19,6 +19,17 @@ ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& 
   return parameters;
 }
 
+void addHostChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
+                     const ResolveParameters& parameters, uint64_t beams, bool spectral) {
+  image.irradianceError = developIrradianceError(histogram, parameters, beams);
+  if (spectral) {
+    const FilmLayout& film = plan.film;
+    image.spectralBinCentresNm = binCentresNm(film.lambdaMinNm, film.lambdaMaxNm, film.bins);
+    image.spectralIrradiance =
+        developSpectrum(histogram, parameters, (film.lambdaMaxNm - film.lambdaMinNm) / double(film.bins));
+  }
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -63,14 +74,19 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
     if (options.onProgress) options.onProgress(done, options.beams);
     if (options.onCheckpoint && options.checkpointSeconds > 0.0 && done < options.beams &&
         secondsSince(lastCheckpoint) >= options.checkpointSeconds) {
-      options.onCheckpoint(tracer->develop(resolveParametersFor(scene, plan, done)), done, result.deviceLabel());
+      const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
+      RenderImage image = tracer->develop(parameters);
+      addHostChannels(image, tracer->download(), plan, parameters, done, options.spectral);
+      options.onCheckpoint(image, done, result.deviceLabel());
       lastCheckpoint = Clock::now();
     }
   }
   result.beamsTraced = done;
   result.traceWallSeconds = secondsSince(traceStart);
   result.histogram = tracer->download();
-  result.image = tracer->develop(resolveParametersFor(scene, plan, done));
+  const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
+  result.image = tracer->develop(parameters);
+  addHostChannels(result.image, result.histogram, plan, parameters, done, options.spectral);
   result.traceDeviceSeconds = tracer->traceDeviceSeconds();
   result.resolveDeviceSeconds = tracer->developDeviceSeconds();
   result.wallSeconds = secondsSince(start);

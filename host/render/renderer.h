@@ -26,6 +26,9 @@ struct RenderOptions {
   // GPU: the scene features the trace pipeline is compiled for
   // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
   uint32_t specialisedFeatures = kSpecialiseAll;
+  // Add the spectral block (one spectral irradiance per bin of the full
+  // spectrum) to the image; error.E is always added.
+  bool spectral = false;
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
@@ -58,6 +61,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
 
 // The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
 // the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.
+// What develop adds to a tracer's image from the downloaded histogram on the
+// host: the per-pixel error estimate and, when `spectral`, the spectral block.
+void addHostChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
+                     const ResolveParameters& parameters, uint64_t beams, bool spectral);
+
 ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams);
 
 }  // namespace spectrace

@@ -17,7 +17,9 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool
   meta.strings["spectrace:scene_sha256"] = scene.sourceSha256;
   meta.strings["spectrace:observer"] = scene.observer;
   meta.strings["spectrace:units"] =
-      "R,G,B: linear sRGB (Rec. 709, D65) of XYZ; XYZ: CIE XYZ with Y in lux; irradiance.E: W/m^2 over all bins";
+      "R,G,B: linear sRGB (Rec. 709, D65) of XYZ; XYZ: CIE XYZ with Y in lux; irradiance.E: W/m^2 over all bins; "
+      "error.E: estimated standard error of irradiance.E, W/m^2; S0.<nm>nm (if present): spectral irradiance, "
+      "W.m^-2.nm^-1";
   meta.numbers["spectrace:wall_time_s"] = wallSeconds;
   meta.numbers["spectrace:spectrum_min_nm"] = scene.spectrum.minNm;
   meta.numbers["spectrace:spectrum_max_nm"] = scene.spectrum.maxNm;
@@ -61,6 +63,7 @@ void prepareFolder(const std::filesystem::path& output) {
 
 RenderResult Session::render(const RenderJob& job) const {
   RenderOptions options = job.options;
+  options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
   options.beams = job.beamCount();
   options.seed = job.seedValue();
   const auto& output = job.output;
