@@ -27,6 +27,8 @@
 #                                                      (CHECK_BASE_SEED, default --seed)
 #   --render-args S extra arguments for every render, e.g. "--threads 2"
 #                                                      (CHECK_RENDER_ARGS)
+#   --shared-channels  compare only the channels both files have, for a
+#                   change that adds channels (CHECK_SHARED_CHANNELS=1)
 # BASE_REV defaults to origin/main if it exists, else HEAD~1.
 set -euo pipefail
 
@@ -39,6 +41,7 @@ devices=${CHECK_DEVICES:-gpu,cpu}
 jobs=${CHECK_JOBS:-$(nproc 2>/dev/null || echo 2)}
 base_seed=${CHECK_BASE_SEED:-}
 render_args=${CHECK_RENDER_ARGS:-}
+shared_channels=${CHECK_SHARED_CHANNELS:-0}
 base_rev=
 
 while (($#)); do
@@ -50,6 +53,7 @@ while (($#)); do
     --jobs) jobs=${2:?--jobs needs a value}; shift 2 ;;
     --base-seed) base_seed=${2:?--base-seed needs a value}; shift 2 ;;
     --render-args) render_args=${2?--render-args needs a value}; shift 2 ;;
+    --shared-channels) shared_channels=1; shift ;;
     --seed=*|--beams=*|--devices=*|--jobs=*|--base-seed=*|--render-args=*)
       opt=${1%%=*}; set -- "$opt" "${1#*=}" "${@:2}" ;;
     -*) usage >&2; die "unknown option $1" ;;
@@ -185,7 +189,9 @@ for scene in "${scenes[@]}"; do
       result="FAILED: tree $why"; failed=$((failed + 1))
     else
       rc=0
-      why=$("$compare" "$base_exr" "$tree_exr" 2>&1) || rc=$?
+      compare_args=()
+      [[ $shared_channels == 1 ]] && compare_args=(--shared-channels)
+      why=$("$compare" "${compare_args[@]}" "$base_exr" "$tree_exr" 2>&1) || rc=$?
       case $rc in
         0) result=same; same=$((same + 1)) ;;
         1) result="DIFFERENT: $why"; different=$((different + 1)) ;;

@@ -17,6 +17,7 @@
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -98,7 +99,8 @@ Image openImage(const char* path) {
 
 // Reads every channel's stored values, each in its own pixel type, so that
 // nothing is converted before the comparison.
-void readPixels(Image& image) {
+// `only`: when not null, the channels to read (the others are skipped).
+void readPixels(Image& image, const std::vector<std::string>* only = nullptr) {
   const Imath::Box2i& dw = image.dataWindow;
   const std::int64_t width = std::int64_t{dw.max.x} - dw.min.x + 1;
   const std::int64_t height = std::int64_t{dw.max.y} - dw.min.y + 1;
@@ -109,6 +111,7 @@ void readPixels(Image& image) {
   for (auto it = list.begin(); it != list.end(); ++it) ++channelCount;
   image.channels.reserve(channelCount);  // the frame buffer points into each channel's bytes
   for (auto it = list.begin(); it != list.end(); ++it) {
+    if (only && std::find(only->begin(), only->end(), std::string(it.name())) == only->end()) continue;
     ChannelData& ch = image.channels.emplace_back();
     ch.name = it.name();
     ch.channel = it.channel();
@@ -159,19 +162,43 @@ std::string formatValue(Imf::PixelType type, std::uint32_t bits) {
   return text;
 }
 
+
+// The names of the channels both lists hold, and a note of the others.
+std::vector<std::string> sharedChannels(const Imf::ChannelList& a, const Imf::ChannelList& b, std::string& others) {
+  std::vector<std::string> shared;
+  for (auto it = a.begin(); it != a.end(); ++it) {
+    if (b.findChannel(it.name())) shared.emplace_back(it.name());
+    else others += std::string(others.empty() ? "" : ", ") + it.name() + " (first only)";
+  }
+  for (auto it = b.begin(); it != b.end(); ++it)
+    if (!a.findChannel(it.name())) others += std::string(others.empty() ? "" : ", ") + it.name() + " (second only)";
+  return shared;
+}
+
+Imf::ChannelList restricted(const Imf::ChannelList& list, const std::vector<std::string>& names) {
+  Imf::ChannelList out;
+  for (auto it = list.begin(); it != list.end(); ++it)
+    if (std::find(names.begin(), names.end(), std::string(it.name())) != names.end()) out.insert(it.name(), it.channel());
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3 || std::strcmp(argv[1], "-h") == 0 || std::strcmp(argv[1], "--help") == 0) {
+  // --shared-channels: compare only the channels both files have (a change
+  // that adds channels must still leave the old ones bit-identical).
+  const bool sharedOnly = argc == 4 && std::strcmp(argv[1], "--shared-channels") == 0;
+  if ((argc != 3 && !sharedOnly) || std::strcmp(argv[1], "-h") == 0 || std::strcmp(argv[1], "--help") == 0) {
     std::fprintf(stderr,
-                 "usage: %s A.exr B.exr\n"
-                 "Exits 0 if both files have the same channels, data window and bit-identical pixel\n"
-                 "values, 1 if not (printing the first difference), 2 on a usage or read error.\n",
+                 "usage: %s [--shared-channels] A.exr B.exr\n"
+                 "Exits 0 if both files have the same channels (or, with --shared-channels, for the\n"
+                 "channels both have), data window and bit-identical pixel values, 1 if not (printing\n"
+                 "the first difference), 2 on a usage or read error.\n",
                  argc > 0 ? argv[0] : "exr_pixels_equal");
     return 2;
   }
-  const char* pathA = argv[1];
-  const char* pathB = argv[2];
+  const char* pathA = argv[sharedOnly ? 2 : 1];
+  const char* pathB = argv[sharedOnly ? 3 : 2];
 
   Image a;
   Image b;
@@ -185,8 +212,15 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const Imf::ChannelList& channelsA = a.file->header().channels();
-  const Imf::ChannelList& channelsB = b.file->header().channels();
+  std::vector<std::string> shared;
+  std::string others;
+  Imf::ChannelList channelsA = a.file->header().channels();
+  Imf::ChannelList channelsB = b.file->header().channels();
+  if (sharedOnly) {
+    shared = sharedChannels(channelsA, channelsB, others);
+    channelsA = restricted(channelsA, shared);
+    channelsB = restricted(channelsB, shared);
+  }
   if (!sameChannels(channelsA, channelsB)) {
     std::printf("channel lists differ: %s has [%s], %s has [%s]\n", pathA, describeChannels(channelsA).c_str(),
                 pathB, describeChannels(channelsB).c_str());
@@ -200,9 +234,9 @@ int main(int argc, char** argv) {
 
   try {
     current = pathA;
-    readPixels(a);
+    readPixels(a, sharedOnly ? &shared : nullptr);
     current = pathB;
-    readPixels(b);
+    readPixels(b, sharedOnly ? &shared : nullptr);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "exr_pixels_equal: cannot read the pixels of %s: %s\n", current, e.what());
     return 2;
@@ -237,5 +271,6 @@ int main(int argc, char** argv) {
     std::printf("%s (%" PRIu64 " of %" PRIu64 " values differ)\n", first.c_str(), differing, total);
     return 1;
   }
+  if (!others.empty()) std::printf("compared the shared channels; not compared: %s\n", others.c_str());
   return 0;
 }
