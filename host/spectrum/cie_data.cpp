@@ -60,6 +60,10 @@ CsvTable parseEmbedded(std::span<const unsigned char> bytes, const char* name) {
 CsvTable parseCsvTable(std::string_view text, const std::string& source) {
   CsvTable t;
   t.source = source;
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the
+  // first field: left there, it made a first data row look like a header,
+  // silently dropped.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   size_t nFields = 0;  // 0 until the header or first data row fixes it
   bool sawHeaderOrData = false;
   int lineNo = 0;

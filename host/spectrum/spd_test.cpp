@@ -230,6 +230,14 @@ TEST(SpdCsv, ReadsHeaderlessFileAndNamedColumns) {
   EXPECT_EQ(loadCsvSpd(multi, "green").integral(), 100.0);
 }
 
+TEST(SpdCsv, AByteOrderMarkDoesNotTurnTheFirstRowIntoAHeader) {
+  const Spd s = loadCsvSpd(writeTemp("bom.csv", "\xEF\xBB\xBF" "500,1\n600,3\n"));
+  EXPECT_EQ(s.lambdaNm, (std::vector<double>{500, 600}));
+  EXPECT_EQ(s.integral(), 200.0);
+  const Spd named = loadCsvSpd(writeTemp("bom_header.csv", "\xEF\xBB\xBF" "nm,value\n500,1\n600,3\n"), "value");
+  EXPECT_EQ(named.integral(), 200.0);
+}
+
 TEST(SpdCsv, ErrorsNameFileLineAndProblem) {
   const fs::path nonMono = writeTemp("nonmono.csv", "nm,v\n400,1\n410,1\n\n400,1\n");
   expectSpdError([&] { loadCsvSpd(nonMono); },
