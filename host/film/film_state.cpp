@@ -1,0 +1,224 @@
+#include "film/film_state.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <openssl/evp.h>
+
+#include "io/atomic_file.h"
+
+namespace spectrace {
+namespace {
+
+using nlohmann::json;
+
+constexpr char kMagic[8] = {'S', 'P', 'C', 'T', 'R', 'S', 'T', 'A'};
+constexpr uint32_t kVersion = 1;
+constexpr size_t kPrefixBytes = 16;  // magic, version, header length
+constexpr size_t kDigestBytes = 32;  // SHA-256
+
+std::array<unsigned char, kDigestBytes> sha256(const unsigned char* data, size_t size) {
+  std::array<unsigned char, kDigestBytes> digest{};
+  unsigned int length = 0;
+  EVP_Digest(data, size, digest.data(), &length, EVP_sha256(), nullptr);
+  return digest;
+}
+
+json toJson(const FilmFingerprint& f) {
+  return {{"scene_file", f.sceneFile},
+          {"scene_sha256", f.sceneSha256},
+          {"observer", f.observer},
+          {"spectrum_min_nm", f.lambdaMinNm},
+          {"spectrum_max_nm", f.lambdaMaxNm},
+          {"bins", f.bins},
+          {"pixels_x", f.pixelsX},
+          {"pixels_y", f.pixelsY},
+          {"window", {f.window.x0, f.window.y0, f.window.width, f.window.height}},
+          {"first_stored_bin", f.firstStoredBin},
+          {"stored_bins", f.storedBins},
+          {"exact_colour", f.exactColour},
+          {"weight_units", f.weightUnits},
+          {"seed", f.seed},
+          {"specialisation", f.specialisation},
+          {"aimed", f.aimed}};
+}
+
+FilmFingerprint fingerprintFromJson(const json& j) {
+  FilmFingerprint f;
+  f.sceneFile = j.at("scene_file").get<std::string>();
+  f.sceneSha256 = j.at("scene_sha256").get<std::string>();
+  f.observer = j.at("observer").get<std::string>();
+  f.lambdaMinNm = j.at("spectrum_min_nm").get<double>();
+  f.lambdaMaxNm = j.at("spectrum_max_nm").get<double>();
+  f.bins = j.at("bins").get<uint32_t>();
+  f.pixelsX = j.at("pixels_x").get<uint32_t>();
+  f.pixelsY = j.at("pixels_y").get<uint32_t>();
+  const auto& w = j.at("window");
+  f.window = {w.at(0).get<uint32_t>(), w.at(1).get<uint32_t>(), w.at(2).get<uint32_t>(), w.at(3).get<uint32_t>()};
+  f.firstStoredBin = j.at("first_stored_bin").get<uint32_t>();
+  f.storedBins = j.at("stored_bins").get<uint32_t>();
+  f.exactColour = j.at("exact_colour").get<bool>();
+  f.weightUnits = j.at("weight_units").get<uint32_t>();
+  f.seed = j.at("seed").get<uint64_t>();
+  f.specialisation = j.at("specialisation").get<uint32_t>();
+  f.aimed = j.at("aimed").get<bool>();
+  return f;
+}
+
+// Sorted by first beam.
+std::vector<BeamRange> sortedRanges(std::vector<BeamRange> ranges) {
+  std::sort(ranges.begin(), ranges.end(), [](const BeamRange& a, const BeamRange& b) { return a.first < b.first; });
+  return ranges;
+}
+
+std::string overlap(const std::vector<BeamRange>& a, const std::vector<BeamRange>& b) {
+  for (const BeamRange& x : a)
+    for (const BeamRange& y : b) {
+      // Ranges may end at 2^64 exactly: compare without overflow.
+      const uint64_t start = std::max(x.first, y.first);
+      const bool xCovers = start - x.first < x.count, yCovers = start - y.first < y.count;
+      if (x.count && y.count && xCovers && yCovers)
+        return fmt::format("their beam ranges overlap: [{}, +{}) and [{}, +{}) share beam {}", x.first, x.count,
+                           y.first, y.count, start);
+    }
+  return "";
+}
+
+void appendWords(std::vector<unsigned char>& out, const std::vector<uint64_t>& words) {
+  const size_t at = out.size();
+  out.resize(at + words.size() * sizeof(uint64_t));
+  // Little-endian on every machine we build for (x86-64, arm64).
+  if (!words.empty()) std::memcpy(out.data() + at, words.data(), words.size() * sizeof(uint64_t));
+}
+
+}  // namespace
+
+uint64_t FilmState::beams() const {
+  uint64_t total = 0;
+  for (const BeamRange& r : ranges) total += r.count;
+  return total;
+}
+
+FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFile, const std::string& sceneSha256,
+                              const std::string& observer, uint64_t seed, uint32_t specialisation, bool aimed) {
+  FilmFingerprint f;
+  f.sceneFile = sceneFile;
+  f.sceneSha256 = sceneSha256;
+  f.observer = observer;
+  f.lambdaMinNm = film.lambdaMinNm;
+  f.lambdaMaxNm = film.lambdaMaxNm;
+  f.bins = film.bins;
+  f.pixelsX = film.pixelsX;
+  f.pixelsY = film.pixelsY;
+  f.window = film.window;
+  f.firstStoredBin = film.firstStoredBin;
+  f.storedBins = film.storedBins;
+  f.exactColour = film.exactColour;
+  f.weightUnits = film.weightUnits;
+  f.seed = seed;
+  f.specialisation = specialisation;
+  f.aimed = aimed;
+  return f;
+}
+
+void writeFilmState(const std::filesystem::path& file, const FilmState& state) {
+  const SpectralHistogram& h = state.histogram;
+  json header = {{"fingerprint", toJson(state.fingerprint)},
+                 {"ranges", json::array()},
+                 {"counted_beams", h.countedBeams},
+                 {"units_per_beam", h.unitsPerBeam},
+                 {"counts", h.counts.size()},
+                 {"colour_sums", h.colourSums.size()},
+                 {"squared_weight_sums", h.squaredWeightSums.size()}};
+  for (const BeamRange& r : state.ranges) header["ranges"].push_back({r.first, r.count});
+  std::string text = header.dump();
+  text.append((8 - (kPrefixBytes + text.size()) % 8) % 8, ' ');  // the arrays start 8-byte aligned
+
+  std::vector<unsigned char> bytes(std::begin(kMagic), std::end(kMagic));
+  const uint32_t prefix[2] = {kVersion, uint32_t(text.size())};
+  bytes.insert(bytes.end(), reinterpret_cast<const unsigned char*>(prefix),
+               reinterpret_cast<const unsigned char*>(prefix) + sizeof prefix);
+  bytes.insert(bytes.end(), text.begin(), text.end());
+  appendWords(bytes, h.counts);
+  appendWords(bytes, h.colourSums);
+  appendWords(bytes, h.squaredWeightSums);
+  const auto digest = sha256(bytes.data(), bytes.size());
+  bytes.insert(bytes.end(), digest.begin(), digest.end());
+
+  try {
+    io_detail::AtomicFile out(file, "state");
+    if (int err = io_detail::pwriteAll(out.fd(), bytes.data(), bytes.size(), 0))
+      out.fail("write: " + io_detail::errnoText(err));
+    out.commit();
+  } catch (const std::exception& e) {
+    throw FilmStateError(e.what());
+  }
+}
+
+FilmState readFilmState(const std::filesystem::path& file) {
+  auto fail = [&](const std::string& what) -> FilmStateError {
+    return FilmStateError(fmt::format("{}: {}", file.string(), what));
+  };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw fail("cannot open the state file");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kPrefixBytes + kDigestBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw fail("not a spectrace state file (no SPCTRSTA magic)");
+  const size_t body = bytes.size() - kDigestBytes;
+  if (sha256(bytes.data(), body) != *reinterpret_cast<const std::array<unsigned char, kDigestBytes>*>(bytes.data() + body))
+    throw fail("checksum mismatch: the file is truncated or corrupted");
+  uint32_t prefix[2];
+  std::memcpy(prefix, bytes.data() + sizeof kMagic, sizeof prefix);
+  if (prefix[0] != kVersion) throw fail(fmt::format("format version {} (this spectrace reads {})", prefix[0], kVersion));
+  if (kPrefixBytes + size_t(prefix[1]) > body) throw fail("the header runs past the end of the file");
+  FilmState state;
+  size_t offset = kPrefixBytes + prefix[1];
+  try {
+    const json header = json::parse(bytes.begin() + kPrefixBytes, bytes.begin() + long(offset));
+    state.fingerprint = fingerprintFromJson(header.at("fingerprint"));
+    for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
+    const FilmFingerprint& f = state.fingerprint;
+    SpectralHistogram& h = state.histogram;
+    h = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
+    h.countedBeams = header.at("counted_beams").get<uint64_t>();
+    for (auto [key, words] : {std::pair{"counts", &h.counts}, std::pair{"colour_sums", &h.colourSums},
+                              std::pair{"squared_weight_sums", &h.squaredWeightSums}}) {
+      const size_t n = header.at(key).get<size_t>();
+      if (n != words->size())
+        throw fail(fmt::format("{} holds {} values where its film has {}", key, n, words->size()));
+      if (n * sizeof(uint64_t) > body - offset) throw fail(fmt::format("{} runs past the end of the file", key));
+      if (n) std::memcpy(words->data(), bytes.data() + offset, n * sizeof(uint64_t));
+      offset += n * sizeof(uint64_t);
+    }
+  } catch (const json::exception& e) {
+    throw fail(fmt::format("bad header: {}", e.what()));
+  }
+  if (offset != body) throw fail("unexpected bytes after the arrays");
+  return state;
+}
+
+std::string mergeRefusal(const FilmState& a, const FilmState& b) {
+  const json fa = toJson(a.fingerprint), fb = toJson(b.fingerprint);
+  for (auto it = fa.begin(); it != fa.end(); ++it) {
+    if (it.key() == "scene_file") continue;  // the same scene may be named by two paths; its hash decides
+    if (fb.at(it.key()) != it.value())
+      return fmt::format("they differ in {}: {} against {}", it.key(), it.value().dump(), fb.at(it.key()).dump());
+  }
+  return overlap(a.ranges, b.ranges);
+}
+
+FilmState mergeStates(const FilmState& a, const FilmState& b) {
+  if (std::string why = mergeRefusal(a, b); !why.empty()) throw FilmStateError("cannot merge: " + why);
+  FilmState out = a;
+  out.histogram.merge(b.histogram);
+  out.ranges.insert(out.ranges.end(), b.ranges.begin(), b.ranges.end());
+  out.ranges = sortedRanges(std::move(out.ranges));
+  return out;
+}
+
+}  // namespace spectrace

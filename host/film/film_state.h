@@ -1,0 +1,71 @@
+#pragma once
+// The exact render state: a film's integer counters with the fingerprint of
+// what was traced, so partial renders merge exactly and an interrupted
+// render resumes bit-identically. The file format is docs/state-format.md:
+// a magic, a version, a JSON header (the fingerprint, the beam ranges and
+// the arrays' lengths), the uint64 arrays, and a SHA-256 of all before it.
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "film/film_layout.h"
+#include "film/spectral_histogram.h"
+
+namespace spectrace {
+
+// A state file that cannot be read or used: names the file and what is wrong.
+struct FilmStateError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Beams [first, first + count) of the render's stream.
+struct BeamRange {
+  uint64_t first = 0;
+  uint64_t count = 0;
+  bool operator==(const BeamRange&) const = default;
+};
+
+// What was traced: two states merge only when every field matches.
+struct FilmFingerprint {
+  std::string sceneFile;     // as given, for messages and for developing a merge
+  std::string sceneSha256;   // of the scene file's bytes
+  std::string observer;
+  double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
+  uint32_t bins = 0;
+  uint32_t pixelsX = 0, pixelsY = 0;
+  PixelWindow window;
+  uint32_t firstStoredBin = 0, storedBins = 0;
+  bool exactColour = true;
+  uint32_t weightUnits = 1;
+  uint64_t seed = 0;
+  uint32_t specialisation = 0;  // SpecialisedFeature bits of the trace pipeline
+  bool aimed = true;            // aimed sampling (changes the beams' weights)
+};
+
+struct FilmState {
+  FilmFingerprint fingerprint;
+  std::vector<BeamRange> ranges;  // sorted, disjoint
+  SpectralHistogram histogram;    // the whole sensor and spectrum
+
+  uint64_t beams() const;
+};
+
+// The fingerprint of a film traced with `seed` from a scene file.
+FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFile, const std::string& sceneSha256,
+                              const std::string& observer, uint64_t seed, uint32_t specialisation, bool aimed);
+
+// Writes atomically (temporary file, fsync, rename). Throws FilmStateError.
+void writeFilmState(const std::filesystem::path& file, const FilmState& state);
+// Reads and checks the magic, version, checksum and array lengths; never
+// returns half a state. Throws FilmStateError naming the file.
+FilmState readFilmState(const std::filesystem::path& file);
+
+// Why `a` and `b` cannot be merged ("" when they can): the first fingerprint
+// field that differs, or the beams their ranges share.
+std::string mergeRefusal(const FilmState& a, const FilmState& b);
+// a + b, exactly. Throws FilmStateError with mergeRefusal's reason.
+FilmState mergeStates(const FilmState& a, const FilmState& b);
+
+}  // namespace spectrace

@@ -1,0 +1,159 @@
+// The exact render state: it round-trips bit for bit, refuses damaged files
+// and states that do not belong together, and shards of [0, N) merge into
+// exactly the film of one render of N beams, on either device or both.
+#include "film/film_state.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "backend/cpu_tracer.h"
+#include "backend/vulkan_tracer.h"
+#include "compile/compile_scene.h"
+#include "render/renderer.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempFile(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("spectrace_state_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// An aimed disk light through a pinhole: fractional weights, so every array
+// (counts, colour sums, squared weights) is in use.
+Scene weightedScene() {
+  Scene scene = testing::bareSensorScene(0.01, 0.01, 12, 10, 24);
+  scene.camera.pinhole = Pinhole{0.02, 0.001};
+  Light disk = testing::surfaceLight(LightType::Disk, {0.0, 0.0, 0.3}, {0.0, 0.0, -1.0}, 2.0, *cieIlluminant("D65"));
+  disk.radiusM = 0.05;
+  scene.lights = {disk};
+  return scene;
+}
+
+FilmState stateOf(const CompiledScene& plan, Tracer& tracer, uint64_t first, uint64_t count, uint64_t seed) {
+  tracer.clear();
+  tracer.trace(first, count);
+  FilmState state;
+  state.fingerprint = fingerprintOf(plan.film, "scene.json", "abc123", "CIE1931_2", seed, 31, true);
+  state.ranges = {{first, count}};
+  state.histogram = tracer.download();
+  return state;
+}
+
+TEST(FilmState, RoundTripsBitForBit) {
+  const Scene scene = weightedScene();
+  const CompiledScene plan = compileScene(scene, 4);
+  ASSERT_TRUE(plan.film.weighted());
+  CpuTracer cpu(plan, 2);
+  const FilmState state = stateOf(plan, cpu, 1000, 200'000, 4);
+  const fs::path file = tempFile("round.state");
+  writeFilmState(file, state);
+  const FilmState back = readFilmState(file);
+  EXPECT_EQ(back.histogram.counts, state.histogram.counts);
+  EXPECT_EQ(back.histogram.colourSums, state.histogram.colourSums);
+  EXPECT_EQ(back.histogram.squaredWeightSums, state.histogram.squaredWeightSums);
+  EXPECT_EQ(back.histogram.countedBeams, state.histogram.countedBeams);
+  EXPECT_EQ(back.ranges, state.ranges);
+  EXPECT_EQ(mergeRefusal(back, back).find("overlap") != std::string::npos, true) << "a state overlaps itself";
+}
+
+TEST(FilmState, DamagedFilesAreRefusedNeverHalfRead) {
+  const CompiledScene plan = compileScene(weightedScene(), 4);
+  CpuTracer cpu(plan, 2);
+  const fs::path file = tempFile("damaged.state");
+  writeFilmState(file, stateOf(plan, cpu, 0, 50'000, 4));
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto refusedWith = [&](const std::string& content, const std::string& expected) {
+    const fs::path damaged = tempFile("bad.state");
+    std::ofstream(damaged, std::ios::binary) << content;
+    try {
+      readFilmState(damaged);
+      ADD_FAILURE() << "accepted a file that should have been refused for " << expected;
+    } catch (const FilmStateError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(damaged.string()), std::string::npos) << "names the file: " << e.what();
+    }
+  };
+  refusedWith(bytes.substr(0, bytes.size() / 2), "checksum");
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x10;
+  refusedWith(flipped, "checksum");
+  refusedWith("not a state at all, just some text that is long enough to hold a digest", "magic");
+}
+
+TEST(FilmState, StatesOfOtherScenesSeedsOrOverlappingBeamsAreRefused) {
+  const CompiledScene plan = compileScene(weightedScene(), 4);
+  CpuTracer cpu(plan, 2);
+  const FilmState a = stateOf(plan, cpu, 0, 10'000, 4);
+  FilmState b = stateOf(plan, cpu, 10'000, 10'000, 4);
+  EXPECT_EQ(mergeRefusal(a, b), "");
+  FilmState otherSeed = b;
+  otherSeed.fingerprint.seed = 5;
+  EXPECT_NE(mergeRefusal(a, otherSeed).find("seed"), std::string::npos);
+  FilmState otherScene = b;
+  otherScene.fingerprint.sceneSha256 = "def456";
+  EXPECT_NE(mergeRefusal(a, otherScene).find("scene_sha256"), std::string::npos);
+  FilmState otherSpectrum = b;
+  otherSpectrum.fingerprint.bins = 25;
+  EXPECT_NE(mergeRefusal(a, otherSpectrum).find("bins"), std::string::npos);
+  FilmState overlapping = b;
+  overlapping.ranges = {{9'999, 5}};
+  EXPECT_NE(mergeRefusal(a, overlapping).find("share beam 9999"), std::string::npos) << mergeRefusal(a, overlapping);
+  EXPECT_THROW(mergeStates(a, overlapping), FilmStateError);
+  // Ranges that end at 2^64 compare without overflow.
+  FilmState top = b, below = b;
+  top.ranges = {{UINT64_MAX - 9, 10}};
+  below.ranges = {{UINT64_MAX - 20, 11}};
+  EXPECT_EQ(mergeRefusal(top, below), "");
+  below.ranges = {{UINT64_MAX - 20, 12}};
+  EXPECT_NE(mergeRefusal(top, below), "");
+}
+
+// Three shards of different sizes, traced on the CPU, the GPU and the CPU,
+// written and read back, merge into the film of one render of all beams,
+// and develop into the same image on the same device.
+TEST(FilmState, ShardsMergeIntoExactlyOneRender) {
+  const Scene scene = weightedScene();
+  const CompiledScene plan = compileScene(scene, 4);
+  constexpr uint64_t kBeams = 300'000;
+  CpuTracer cpu(plan, 2);
+  VulkanTracer gpu(testing::sharedVulkan(), plan);
+  const uint64_t cuts[] = {0, 70'001, 190'000, kBeams};
+  Tracer* devices[] = {&cpu, &gpu, &cpu};
+  FilmState merged;
+  for (int s = 0; s < 3; ++s) {
+    const fs::path file = tempFile("shard" + std::to_string(s) + ".state");
+    writeFilmState(file, stateOf(plan, *devices[s], cuts[s], cuts[s + 1] - cuts[s], 4));
+    const FilmState shard = readFilmState(file);
+    merged = s == 0 ? shard : mergeStates(merged, shard);
+  }
+  EXPECT_EQ(merged.beams(), kBeams);
+  gpu.clear();
+  gpu.trace(0, kBeams);
+  const SpectralHistogram whole = gpu.download();
+  EXPECT_EQ(merged.histogram.counts, whole.counts);
+  EXPECT_EQ(merged.histogram.colourSums, whole.colourSums);
+  EXPECT_EQ(merged.histogram.squaredWeightSums, whole.squaredWeightSums);
+  EXPECT_EQ(merged.histogram.countedBeams, whole.countedBeams);
+  // Developed on the same device, the merged film gives the same pixels.
+  const ResolveParameters parameters = resolveParametersFor(scene, plan, kBeams);
+  const RenderImage one = gpu.develop(parameters);
+  gpu.upload(merged.histogram);
+  const RenderImage fromShards = gpu.develop(parameters);
+  EXPECT_EQ(fromShards.rgb, one.rgb);
+  EXPECT_EQ(fromShards.xyz, one.xyz);
+  EXPECT_EQ(fromShards.irradiance, one.irradiance);
+}
+
+}  // namespace
+}  // namespace spectrace
