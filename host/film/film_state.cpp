@@ -45,7 +45,10 @@ json toJson(const FilmFingerprint& f) {
           {"weight_units", f.weightUnits},
           {"seed", f.seed},
           {"specialisation", f.specialisation},
-          {"aimed", f.aimed}};
+          {"aimed", f.aimed},
+          {"skip_unreachable_lights", f.skipUnreachableLights},
+          {"trim_spectrum", f.trimSpectrum},
+          {"trim_pixels", f.trimPixels}};
 }
 
 FilmFingerprint fingerprintFromJson(const json& j) {
@@ -67,6 +70,9 @@ FilmFingerprint fingerprintFromJson(const json& j) {
   f.seed = j.at("seed").get<uint64_t>();
   f.specialisation = j.at("specialisation").get<uint32_t>();
   f.aimed = j.at("aimed").get<bool>();
+  f.skipUnreachableLights = j.at("skip_unreachable_lights").get<bool>();
+  f.trimSpectrum = j.at("trim_spectrum").get<bool>();
+  f.trimPixels = j.at("trim_pixels").get<bool>();
   return f;
 }
 
@@ -202,13 +208,18 @@ FilmState readFilmState(const std::filesystem::path& file) {
   return state;
 }
 
-std::string mergeRefusal(const FilmState& a, const FilmState& b) {
-  const json fa = toJson(a.fingerprint), fb = toJson(b.fingerprint);
+std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprint& b) {
+  const json fa = toJson(a), fb = toJson(b);
   for (auto it = fa.begin(); it != fa.end(); ++it) {
     if (it.key() == "scene_file") continue;  // the same scene may be named by two paths; its hash decides
-    if (fb.at(it.key()) != it.value())
-      return fmt::format("they differ in {}: {} against {}", it.key(), it.value().dump(), fb.at(it.key()).dump());
+    if (fb.at(it.key()) != it.value()) return fmt::format("{}: {} against {}", it.key(), it.value().dump(), fb.at(it.key()).dump());
   }
+  return "";
+}
+
+std::string mergeRefusal(const FilmState& a, const FilmState& b) {
+  if (std::string field = fingerprintDifference(a.fingerprint, b.fingerprint); !field.empty())
+    return "they differ in " + field;
   return overlap(a.ranges, b.ranges);
 }
 

@@ -42,6 +42,9 @@ struct FilmFingerprint {
   uint64_t seed = 0;
   uint32_t specialisation = 0;  // SpecialisedFeature bits of the trace pipeline
   bool aimed = true;            // aimed sampling (changes the beams' weights)
+  // The other shortcuts it was compiled with, so a merge can compile the
+  // scene the same way (compile/compile_scene.h, CompileOptions).
+  bool skipUnreachableLights = true, trimSpectrum = true, trimPixels = true;
 };
 
 struct FilmState {
@@ -62,6 +65,10 @@ void writeFilmState(const std::filesystem::path& file, const FilmState& state);
 // returns half a state. Throws FilmStateError naming the file.
 FilmState readFilmState(const std::filesystem::path& file);
 
+// The first field in which two fingerprints differ, as "<field>: <a> against
+// <b>", or "" when they match (the scene file's path is not compared: its
+// SHA-256 is).
+std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprint& b);
 // Why `a` and `b` cannot be merged ("" when they can): the first fingerprint
 // field that differs, or the beams their ranges share.
 std::string mergeRefusal(const FilmState& a, const FilmState& b);

@@ -64,20 +64,27 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   if (options.log)
     options.log(fmt::format("device: {} ({})", result.deviceName, result.deviceKind == DeviceKind::Vulkan ? "Vulkan" : "C++"));
 
+  uint64_t done = 0;
+  if (options.resumeFilm) {
+    tracer->upload(*options.resumeFilm);
+    done = std::min(options.resumedBeams, options.beams);
+  }
+  const uint64_t resumed = done;
   auto lastCheckpoint = Clock::now();
   const auto traceStart = Clock::now();
-  uint64_t done = 0;
   while (done < options.beams) {
     if (options.cancel && options.cancel->load()) break;
-    const uint64_t batch = nextBatch(done, secondsSince(traceStart), options.beams - done, options);
+    const uint64_t batch = nextBatch(done - resumed, secondsSince(traceStart), options.beams - done, options);
     done += tracer->trace(options.firstBeam + done, batch, options.cancel);
     if (options.onProgress) options.onProgress(done, options.beams);
     if (options.onCheckpoint && options.checkpointSeconds > 0.0 && done < options.beams &&
         secondsSince(lastCheckpoint) >= options.checkpointSeconds) {
       const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
       RenderImage image = tracer->develop(parameters);
-      addHostChannels(image, tracer->download(), plan, parameters, done, options.spectral);
+      const SpectralHistogram film = tracer->download();
+      addHostChannels(image, film, plan, parameters, done, options.spectral);
       options.onCheckpoint(image, done, result.deviceLabel());
+      if (options.onCheckpointFilm) options.onCheckpointFilm(film, done);
       lastCheckpoint = Clock::now();
     }
   }

@@ -35,6 +35,13 @@ struct RenderOptions {
   // Called between batches at most every checkpointSeconds with the image
   // of the beams finished so far, their count and the device's label.
   std::function<void(const RenderImage&, uint64_t beamsDone, const std::string& device)> onCheckpoint;
+  // With each checkpoint, the exact film of the beams finished so far
+  // (for the render state, film/film_state.h).
+  std::function<void(const SpectralHistogram& film, uint64_t beamsDone)> onCheckpointFilm;
+  // Resume: the film of beams [firstBeam, firstBeam + resumedBeams), already
+  // traced; the render goes on after them and ends as if never stopped.
+  const SpectralHistogram* resumeFilm = nullptr;
+  uint64_t resumedBeams = 0;
   std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
   std::function<void(const std::string&)> log;  // device choice and notices
 };

@@ -1,5 +1,7 @@
 #include "session/session.h"
 
+#include "compile/compile_scene.h"
+
 #include <chrono>
 #include <fmt/format.h>
 #include <system_error>
@@ -61,6 +63,32 @@ void prepareFolder(const std::filesystem::path& output) {
 
 }  // namespace
 
+FilmFingerprint jobFingerprint(const RenderJob& job) {
+  const RenderOptions& o = job.options;
+  const CompiledScene plan = compileScene(job.scene, job.seedValue(), o.plan);
+  FilmFingerprint f = fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256,
+                                    job.scene.observer, job.seedValue(), o.specialisedFeatures, o.plan.aim);
+  f.skipUnreachableLights = o.plan.skipUnreachableLights;
+  f.trimSpectrum = o.plan.trimSpectrum;
+  f.trimPixels = o.plan.trimPixels;
+  return f;
+}
+
+namespace {
+
+// The state a resume starts from, checked against the job: throws
+// FilmStateError naming what differs.
+void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerprint& fingerprint) {
+  if (std::string field = fingerprintDifference(state.fingerprint, fingerprint); !field.empty())
+    throw FilmStateError("the state does not belong to this render: it differs in " + field);
+  const uint64_t first = job.options.firstBeam;
+  if (state.ranges.size() != 1 || state.ranges[0].first != first || state.ranges[0].count > job.beamCount())
+    throw FilmStateError(fmt::format("the state's beams are not a start of this render's beams [{}, +{})", first,
+                                     job.beamCount()));
+}
+
+}  // namespace
+
 RenderResult Session::render(const RenderJob& job) const {
   RenderOptions options = job.options;
   options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
@@ -68,6 +96,22 @@ RenderResult Session::render(const RenderJob& job) const {
   options.seed = job.seedValue();
   const auto& output = job.output;
   prepareFolder(output);
+  FilmFingerprint fingerprint;
+  if (!job.state.empty() || job.resume) fingerprint = jobFingerprint(job);
+  if (job.resume) {
+    checkResume(job, *job.resume, fingerprint);
+    options.resumeFilm = &job.resume->histogram;
+    options.resumedBeams = job.resume->beams();
+  }
+  auto writeState = [&](const SpectralHistogram& film, uint64_t done) {
+    if (job.state.empty()) return;
+    writeFilmState(job.state, FilmState{fingerprint, {{options.firstBeam, done}}, film});
+  };
+  auto onCheckpointFilm = options.onCheckpointFilm;
+  options.onCheckpointFilm = [&](const SpectralHistogram& film, uint64_t done) {
+    writeState(film, done);
+    if (onCheckpointFilm) onCheckpointFilm(film, done);
+  };
   const auto start = std::chrono::steady_clock::now();
   auto onCheckpoint = options.onCheckpoint;
   // A checkpoint is a complete, valid image of the beams finished so far.
@@ -79,6 +123,7 @@ RenderResult Session::render(const RenderJob& job) const {
   };
   try {
     RenderResult result = spectrace::render(job.scene, options, *device_);
+    writeState(result.histogram, result.beamsTraced);
     writeExr(output, result.image,
              renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
                             result.beamsTraced, result.wallSeconds));
@@ -89,6 +134,8 @@ RenderResult Session::render(const RenderJob& job) const {
     }
     return result;
   } catch (const ImageIoError& e) {
+    throw OutputError(e.what());
+  } catch (const FilmStateError& e) {
     throw OutputError(e.what());
   }
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "backend/device.h"
+#include "film/film_state.h"
 #include "io/image.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -28,6 +29,12 @@ struct RenderJob {
   // Everything else about the render (shortcuts, threads, callbacks).
   // beams, seed and device are the job's and the session's.
   RenderOptions options;
+  // The exact render state, written at every checkpoint and at the end
+  // (film/film_state.h); none when empty.
+  std::filesystem::path state;
+  // A state to go on from: it must be this job's (same fingerprint) and
+  // cover beams [firstBeam, firstBeam + k); the render traces the rest.
+  std::optional<FilmState> resume;
 
   uint64_t beamCount() const { return beams.value_or(scene.render.beams); }
   uint64_t seedValue() const { return seed.value_or(scene.render.seed); }
@@ -56,6 +63,10 @@ class Session {
  private:
   std::unique_ptr<Device> device_;
 };
+
+// The fingerprint of `job` rendered as it is set up (its scene compiled
+// with its options and seed): what its state files carry.
+FilmFingerprint jobFingerprint(const RenderJob& job);
 
 // The EXR header the renders write (spectrace:beams etc.).
 ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
