@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include <algorithm>
+#include <cinttypes>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
@@ -27,7 +28,58 @@ bool namesFolder(const std::filesystem::path& output) {
   return (!text.empty() && text.back() == '/') || std::filesystem::is_directory(output, ec);
 }
 
+// --state, --resume and --shard on a job: 0, or the exit code of bad input.
+int applyStateOptions(const RenderCommand& command, RenderJob& job) {
+  if (command.shard) {
+    uint64_t index = 0, count = 0;
+    char slash = 0;
+    char rest = 0;
+    if (std::sscanf(command.shard->c_str(), "%" SCNu64 "%c%" SCNu64 "%c", &index, &slash, &count, &rest) != 3 ||
+        slash != '/' || count == 0 || index >= count || command.shard->find('-') != std::string::npos) {
+      std::fprintf(stderr, "spectrace: error: --shard %s: give I/K with 0 <= I < K, e.g. 0/4\n", command.shard->c_str());
+      return 2;
+    }
+    const BeamRange range = shardRange(job.options.firstBeam, job.beamCount(), index, count);
+    job.options.firstBeam = range.first;
+    job.beams = range.count;
+    // A shard is finished by `merge`: keep its exact state.
+    if (!command.state) job.state = std::filesystem::path(job.output).replace_extension(".state");
+  }
+  if (command.state) job.state = *command.state;
+  if (command.resume) {
+    job.resume = readFilmState(*command.resume);
+    if (!command.state) job.state = *command.resume;
+  }
+  return 0;
+}
+
 }  // namespace
+
+int runMerge(const MergeCommand& command) {
+  try {
+    FilmState merged = readFilmState(command.states.front());
+    for (size_t i = 1; i < command.states.size(); ++i) {
+      const FilmState next = readFilmState(command.states[i]);
+      if (std::string why = mergeRefusal(merged, next); !why.empty()) {
+        std::fprintf(stderr, "spectrace: error: cannot merge %s: %s\n", command.states[i].c_str(), why.c_str());
+        return 2;
+      }
+      merged = mergeStates(merged, next);
+    }
+    std::function<void(const std::string&)> log;
+    if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+    const Session session(parseDeviceChoice(command.device), log);
+    const RenderResult result = session.develop(merged, command.output, command.spectral, command.png);
+    if (command.state) writeFilmState(*command.state, merged);
+    if (!command.quiet)
+      std::fprintf(stderr, "spectrace: merged %zu states, %llu beams -> %s\n", command.states.size(),
+                   (unsigned long long)result.beamsTraced, command.output.c_str());
+    return 0;
+  } catch (const FilmStateError& e) {
+    std::fprintf(stderr, "spectrace: error: %s\n", e.what());
+    return 2;
+  }
+}
 
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   const bool several = command.scenes.size() > 1;
@@ -36,6 +88,11 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
                  "spectrace: error: -o %s names one file but there are %zu scenes; give a folder (ending in '/') "
                  "or leave -o out\n",
                  command.output->c_str(), command.scenes.size());
+    return 2;
+  }
+  if (several && (command.state || command.resume || command.shard)) {
+    std::fprintf(stderr, "spectrace: error: --state, --resume and --shard take one scene (got %zu)\n",
+                 command.scenes.size());
     return 2;
   }
   std::vector<RenderJob> jobs;
@@ -59,6 +116,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+    if (int code = applyStateOptions(command, job); code != 0) return code;
     for (const RenderJob& other : jobs)
       if (other.output == job.output) {
         std::fprintf(stderr, "spectrace: error: %s and %s would both be written to %s\n",

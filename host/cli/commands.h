@@ -27,6 +27,11 @@ struct RenderCommand {
   bool fullSensor = false;     // store every pixel, not only those beams can reach
   bool general = false;        // the general trace pipeline, not one specialised to the scene
   bool noAim = false;          // analog emission: beams in every direction the lights emit
+  // The exact render state (film/film_state.h), rewritten at checkpoints
+  // and at the end; one scene only.
+  std::optional<std::filesystem::path> state;
+  std::optional<std::filesystem::path> resume;  // go on from this state (and keep writing it)
+  std::optional<std::string> shard;             // "I/K": beams of the I-th (0-based) of K equal parts
 };
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 
@@ -43,6 +48,18 @@ struct BatchCommand {
 };
 // Exit code 0 when every job rendered (or was skipped), 2 when any failed.
 int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel);
+
+struct MergeCommand {
+  std::vector<std::filesystem::path> states;     // render states of disjoint beam ranges
+  std::filesystem::path output;                  // the EXR of the merged film
+  std::optional<std::filesystem::path> state;    // also write the merged state
+  std::string device = "auto";
+  bool spectral = false;
+  bool png = true;
+  bool quiet = false;
+};
+// Exit code 2 when the states cannot be merged (the message says which field differs).
+int runMerge(const MergeCommand& command);
 
 struct BenchCommand {
   uint64_t beams = uint64_t(1) << 25;   // throughput section, per device

@@ -45,6 +45,20 @@ int main(int argc, char** argv) {
                       "Analog emission (the reference): do not aim beams at the pinhole or sensor");
   renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
                         "Write the image so far at this interval (0: never)");
+  renderCmd->add_option("--state", render.state, "Also write the exact render state (docs/state-format.md)");
+  renderCmd->add_option("--resume", render.resume, "Go on from this render state, and keep writing it");
+  renderCmd->add_option("--shard", render.shard, "I/K: render the I-th (0-based) of K equal beam ranges");
+
+  MergeCommand merge;
+  auto* mergeCmd = app.add_subcommand("merge", "Add render states of disjoint beam ranges exactly, write the image");
+  mergeCmd->add_option("states", merge.states, "Render states (from render --state)")->required();
+  mergeCmd->add_option("-o,--output", merge.output, "Output EXR (and a PNG preview beside it)")->required();
+  mergeCmd->add_option("--state", merge.state, "Also write the merged state");
+  mergeCmd->add_option("--device", merge.device, "Where to develop: auto, gpu or cpu")
+      ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
+  mergeCmd->add_flag("--spectral", merge.spectral, "Also write one EXR channel per wavelength bin");
+  mergeCmd->add_flag("!--no-png", merge.png, "Do not write the PNG preview");
+  mergeCmd->add_flag("-q,--quiet", merge.quiet, "Print only errors");
 
   BatchCommand batch;
   auto* batchCmd = app.add_subcommand("batch", "Render the jobs of a JSON Lines job file on one device");
@@ -83,6 +97,7 @@ int main(int argc, char** argv) {
   try {
     if (renderCmd->parsed()) return runRender(render, gCancel);
     if (batchCmd->parsed()) return runBatch(batch, gCancel);
+    if (mergeCmd->parsed()) return runMerge(merge);
     if (devicesCmd->parsed()) return runDevices();
     if (benchCmd->parsed()) return runBench(bench, gCancel);
   } catch (const std::exception& e) {

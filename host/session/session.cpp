@@ -140,4 +140,60 @@ RenderResult Session::render(const RenderJob& job) const {
   }
 }
 
+BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_t count) {
+  if (count == 0 || index >= count)
+    throw std::invalid_argument(fmt::format("shard {} of {}: the index must be below the count", index, count));
+  // floor(beams * i / count), in 128 bits: shards tile [0, beams) exactly.
+  auto cut = [&](uint64_t i) { return uint64_t((unsigned __int128)beams * i / count); };
+  return {firstBeam + cut(index), cut(index + 1) - cut(index)};
+}
+
+RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral,
+                              bool png) const {
+  const FilmFingerprint& f = state.fingerprint;
+  RenderJob job;
+  try {
+    job.scene = loadScene(f.sceneFile);
+  } catch (const std::exception& e) {
+    throw FilmStateError(fmt::format("the state's scene {} cannot be read: {}", f.sceneFile, e.what()));
+  }
+  if (job.scene.sourceSha256 != f.sceneSha256)
+    throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
+                                     f.sceneFile, job.scene.sourceSha256, f.sceneSha256));
+  job.seed = f.seed;
+  job.beams = state.beams();
+  job.options.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
+  job.options.specialisedFeatures = f.specialisation;
+  job.options.plan = CompileOptions{f.exactColour, f.skipUnreachableLights, f.trimSpectrum, f.trimPixels, f.aimed};
+  if (std::string field = fingerprintDifference(f, jobFingerprint(job)); !field.empty())
+    throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
+  const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);
+  const auto tracer = device_->makeTracer(plan, TracerOptions{64, f.specialisation, 0});
+  tracer->upload(state.histogram);
+  RenderResult result;
+  result.plan = plan;
+  result.histogram = state.histogram;
+  result.beamsTraced = state.beams();
+  result.deviceKind = tracer->kind();
+  result.deviceName = tracer->deviceName();
+  const ResolveParameters parameters = resolveParametersFor(job.scene, plan, result.beamsTraced);
+  result.image = tracer->develop(parameters);
+  addHostChannels(result.image, state.histogram, plan, parameters, result.beamsTraced,
+                  spectral || job.scene.outputSpectral);
+  prepareFolder(output);
+  try {
+    writeExr(output, result.image,
+             renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,
+                            result.beamsTraced, 0.0));
+    if (png) {
+      auto preview = output;
+      preview.replace_extension(".png");
+      writePngPreview(preview, result.image);
+    }
+  } catch (const ImageIoError& e) {
+    throw OutputError(e.what());
+  }
+  return result;
+}
+
 }  // namespace spectrace

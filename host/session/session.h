@@ -60,9 +60,19 @@ class Session {
   // written; the result is returned either way only on success.
   RenderResult render(const RenderJob& job) const;
 
+  // Develops a (merged) state into `output` on the session's device, as a
+  // render of all its beams would: the scene is its fingerprint's file,
+  // which must still hash the same and compile to the same film.
+  // Throws FilmStateError (bad input) or OutputError.
+  RenderResult develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png) const;
+
  private:
   std::unique_ptr<Device> device_;
 };
+
+// The beams of shard `index` (0-based) of `count` equal parts of `beams`
+// beams starting at `firstBeam` (throws std::invalid_argument for index >= count).
+BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_t count);
 
 // The fingerprint of `job` rendered as it is set up (its scene compiled
 // with its options and seed): what its state files carry.

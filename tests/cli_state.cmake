@@ -1,0 +1,57 @@
+# cmake -DSPECTRACE=... -DCOMPARE=... -DSCENE=... -DDIR=... -DMODE=shards|kill -P cli_state.cmake
+# shards: three shards of one render, traced on gpu, cpu and gpu, merged on
+#   the gpu, give the same EXR pixels as one gpu render of all the beams.
+# kill: a render killed (SIGKILL, by the timeout) after its first checkpoints
+#   resumes from its state and ends with the same EXR pixels as an
+#   uninterrupted render.
+file(REMOVE_RECURSE ${DIR})
+file(MAKE_DIRECTORY ${DIR})
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}${err}")
+  endif()
+endfunction()
+function(expect_same a b)
+  execute_process(COMMAND ${COMPARE} ${a} ${b} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${a} and ${b} differ: ${out}")
+  endif()
+endfunction()
+
+if(MODE STREQUAL "shards")
+  set(beams 1200000)
+  set(devices gpu cpu gpu)
+  foreach(i 0 1 2)
+    list(GET devices ${i} device)
+    run(${SPECTRACE} render ${SCENE} --beams ${beams} --shard ${i}/3 --device ${device}
+        -o ${DIR}/shard${i}.exr --state ${DIR}/shard${i}.state -q --no-png)
+  endforeach()
+  run(${SPECTRACE} merge ${DIR}/shard0.state ${DIR}/shard1.state ${DIR}/shard2.state -o ${DIR}/merged.exr
+      --device gpu --state ${DIR}/merged.state -q --no-png)
+  run(${SPECTRACE} render ${SCENE} --beams ${beams} --device gpu -o ${DIR}/whole.exr -q --no-png)
+  expect_same(${DIR}/merged.exr ${DIR}/whole.exr)
+  # The merged state merges no further with any of its parts.
+  execute_process(COMMAND ${SPECTRACE} merge ${DIR}/merged.state ${DIR}/shard1.state -o ${DIR}/again.exr -q
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "overlap")
+    message(FATAL_ERROR "an overlapping merge was not refused with exit code 2 (${rc}): ${err}")
+  endif()
+elseif(MODE STREQUAL "kill")
+  set(beams 60000000)
+  execute_process(COMMAND ${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1
+                          -o ${DIR}/killed.exr --state ${DIR}/killed.state --checkpoint-seconds 1 -q --no-png
+                  TIMEOUT 3 RESULT_VARIABLE rc)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "the render finished before it could be killed; raise the beam count")
+  endif()
+  if(NOT EXISTS ${DIR}/killed.state)
+    message(FATAL_ERROR "no state was written before the kill")
+  endif()
+  run(${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1 -o ${DIR}/resumed.exr
+      --resume ${DIR}/killed.state -q --no-png)
+  run(${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1 -o ${DIR}/whole.exr -q --no-png)
+  expect_same(${DIR}/resumed.exr ${DIR}/whole.exr)
+else()
+  message(FATAL_ERROR "unknown MODE ${MODE}")
+endif()
