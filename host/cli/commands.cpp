@@ -1,5 +1,7 @@
 #include "cli/commands.h"
 
+#include "cli/cli_numbers.h"
+
 #include <algorithm>
 #include <cinttypes>
 #include <chrono>
@@ -116,7 +118,11 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+    checkBeamRange(command.firstBeam, job.beamCount());
     if (int code = applyStateOptions(command, job); code != 0) return code;
+    std::vector<std::filesystem::path> inputs(command.scenes.begin(), command.scenes.end());
+    if (command.resume) inputs.push_back(*command.resume);
+    checkOutputPath(job, inputs);  // before any tracing; exit 2
     for (const RenderJob& other : jobs)
       if (other.output == job.output) {
         std::fprintf(stderr, "spectrace: error: %s and %s would both be written to %s\n",

@@ -5,18 +5,42 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <stdexcept>
 
+#include "cli/cli_numbers.h"
 #include "cli/commands.h"
+#include "json/json_fields.h"
+#include "json/scene_error.h"
+#include "session/job_file.h"
+#include "session/session.h"
+#include "spectrum/spd.h"
+#include "vulkan/context.h"
 
 namespace {
 std::atomic<bool> gCancel{false};
 extern "C" void onSignal(int) { gCancel.store(true); }
+
+// Exit codes (README "Exit codes", docs/reliability.md): this one place maps
+// what went wrong to them; 130 (interrupt) comes from the verbs.
+constexpr int kExitRuntime = 1;   // Vulkan, I/O during the render, out of memory
+constexpr int kExitBadInput = 2;  // CLI arguments, scene file, CSV, job file, output path
+
+int fail(int code, const char* message) {
+  std::fprintf(stderr, "spectrace: error: %s\n", message);
+  return code;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
+  using namespace spectrace;
   using namespace spectrace::cli;
   CLI::App app{"spectrace: a spectral light tracer on Vulkan compute, with an exact CPU reference"};
   app.require_subcommand(1);
+  // CLI11's parse errors start like every other error (exit code 2).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("spectrace: error: ") + e.what() + "\nRun with --help for more information.\n";
+  });
 
   RenderCommand render;
   auto* renderCmd = app.add_subcommand("render", "Render a scene file to OpenEXR (and a PNG preview)");
@@ -24,12 +48,20 @@ int main(int argc, char** argv) {
       ->required();
   renderCmd->add_option("-o,--output", render.output,
                         "Output EXR (default out/<scene>.exr); with several scenes, a folder (DIR/)");
-  renderCmd->add_option("--beams", render.beams, "Number of beams (default: the scene's render.beams)");
-  renderCmd->add_option("--seed", render.seed, "RNG seed (default: the scene's render.seed)");
-  renderCmd->add_option("--first-beam", render.firstBeam, "Index of the first beam (to split a render into parts)");
+  renderCmd->add_option_function<std::string>(
+      "--beams", [&](const std::string& v) { render.beams = parseU64("--beams", v, 1); },
+      "Number of beams, 1 to 2^64-1 (default: the scene's render.beams)");
+  renderCmd->add_option_function<std::string>(
+      "--seed", [&](const std::string& v) { render.seed = parseU64("--seed", v, 0); },
+      "RNG seed, 0 to 2^64-1 (default: the scene's render.seed)");
+  renderCmd->add_option_function<std::string>(
+      "--first-beam", [&](const std::string& v) { render.firstBeam = parseU64("--first-beam", v, 0); },
+      "Index of the first beam (to split a render into parts); first beam + beams <= 2^64");
   renderCmd->add_option("--device", render.device, "auto, gpu (any Vulkan device, lavapipe included) or cpu")
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
-  renderCmd->add_option("--threads", render.threads, "CPU reference threads (default: all)");
+  renderCmd->add_option_function<std::string>(
+      "--threads", [&](const std::string& v) { render.threads = parseThreads("--threads", v); },
+      "CPU reference threads, 1 to 1024 (default: all)");
   renderCmd->add_flag("!--no-png", render.png, "Do not write the PNG preview");
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
   renderCmd->add_flag("--full-spectrum", render.fullSpectrum,
@@ -43,8 +75,10 @@ int main(int argc, char** argv) {
                       "Use the general trace pipeline instead of one specialised to the scene");
   renderCmd->add_flag("--no-aim", render.noAim,
                       "Analog emission (the reference): do not aim beams at the pinhole or sensor");
-  renderCmd->add_option("--checkpoint-seconds", render.checkpointSeconds,
-                        "Write the image so far at this interval (0: never)");
+  renderCmd->add_option_function<std::string>(
+      "--checkpoint-seconds",
+      [&](const std::string& v) { render.checkpointSeconds = parseNonNegativeSeconds("--checkpoint-seconds", v); },
+      "Write the image so far at this interval, a finite number >= 0 (0: never; default 60)");
   renderCmd->add_option("--state", render.state, "Also write the exact render state (docs/state-format.md)");
   renderCmd->add_option("--resume", render.resume, "Go on from this render state, and keep writing it");
   renderCmd->add_option("--shard", render.shard, "I/K: render the I-th (0-based) of K equal beam ranges");
@@ -77,9 +111,13 @@ int main(int argc, char** argv) {
 
   BenchCommand bench;
   auto* benchCmd = app.add_subcommand("bench", "Beams per second: Vulkan device vs CPU reference on a fixed scene");
-  benchCmd->add_option("--beams", bench.beams, "Beams per device in the throughput section");
+  benchCmd->add_option_function<std::string>(
+      "--beams", [&](const std::string& v) { bench.beams = parseU64("--beams", v, 1); },
+      "Beams per device in the throughput section");
   benchCmd->add_option("--device", bench.devices, "Comma-separated devices: gpu, cpu or device names (default: all)");
-  benchCmd->add_option("--threads", bench.threads, "CPU reference threads (default: all)");
+  benchCmd->add_option_function<std::string>(
+      "--threads", [&](const std::string& v) { bench.threads = parseThreads("--threads", v); },
+      "CPU reference threads, 1 to 1024 (default: all)");
   benchCmd->add_option("--out", bench.out, "Write benchmarks.md, CSV files and plots into this folder");
   benchCmd->add_option("--scenes", bench.scenesDir, "Folder of the reference scenes (default scenes/reference)");
   benchCmd->add_option("--min-decade", bench.minDecade, "Error sweep from 10^this beams");
@@ -91,7 +129,14 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
   benchCmd->add_flag("!--no-aim-study", bench.aim, "Skip the aimed-vs-analog comparison");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, or the parse error
+    return code == 0 ? 0 : kExitBadInput;
+  } catch (const UsageError& e) {
+    return fail(kExitBadInput, e.what());
+  }
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   try {
@@ -100,9 +145,28 @@ int main(int argc, char** argv) {
     if (mergeCmd->parsed()) return runMerge(merge);
     if (devicesCmd->parsed()) return runDevices();
     if (benchCmd->parsed()) return runBench(bench, gCancel);
+  } catch (const UsageError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const SceneError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const json_fields::JsonFieldError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const SpdError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const JobFileError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const OutputPathError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const FilmStateError& e) {  // a state that cannot be read or does not belong
+    return fail(kExitBadInput, e.what());
+  } catch (const std::invalid_argument& e) {  // parseDeviceChoice
+    return fail(kExitBadInput, e.what());
+  } catch (const vk_util::VulkanError& e) {
+    return fail(kExitRuntime, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(kExitRuntime, "out of memory");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "spectrace: error: %s\n", e.what());
-    return 1;
+    return fail(kExitRuntime, e.what());
   }
   return 0;
 }

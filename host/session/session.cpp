@@ -6,6 +6,13 @@
 #include <fmt/format.h>
 #include <system_error>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+
 namespace spectrace {
 
 ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
@@ -89,7 +96,50 @@ void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerp
 
 }  // namespace
 
+void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs) {
+  namespace fs = std::filesystem;
+  const fs::path& output = job.output;
+  const std::string name = output.string();
+  std::error_code ec;
+  const fs::file_status st = fs::status(output, ec);
+  const bool exists = !ec && fs::exists(st);
+  if (exists) {
+    std::vector<fs::path> all = inputs;
+    all.push_back(job.scene.sourcePath);
+    for (const auto& input : all) {
+      if (input.empty()) continue;
+      std::error_code eq;
+      if (fs::equivalent(output, input, eq) && !eq)
+        throw OutputPathError(fmt::format("output {} is the input file {}; an input is never overwritten", name,
+                                          input.string()));
+    }
+    if (!fs::is_regular_file(st))
+      throw OutputPathError(fmt::format("output {} exists and is not a regular file ({}); refusing to replace it", name,
+                                        fs::is_directory(st) ? "a folder" : "a device, pipe or socket"));
+  }
+  std::string ext = output.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".exr")
+    throw OutputPathError(fmt::format("output {} must end in .exr (the PNG preview is written beside it as .png)", name));
+  const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  fs::create_directories(folder, ec);
+  if (ec)
+    throw OutputPathError(fmt::format("cannot create the folder {} for {}: {}", folder.string(), name, ec.message()));
+  // A probe file proves the folder takes a new file (permissions, read-only
+  // file systems) before any beam is traced; the real write is atomic later.
+  const fs::path probe = folder / fmt::format(".{}.probe-{}", output.filename().string(), ::getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    throw OutputPathError(fmt::format("cannot write {}: cannot create a file in {}: {}", name, folder.string(),
+                                      std::error_code(err, std::generic_category()).message()));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 RenderResult Session::render(const RenderJob& job) const {
+  checkOutputPath(job);
   RenderOptions options = job.options;
   options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
   options.beams = job.beamCount();

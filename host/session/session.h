@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "backend/device.h"
 #include "film/film_state.h"
@@ -45,6 +46,20 @@ struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The output path is unusable (bad input, found before tracing): an input
+// file, a device node or folder, not ending in .exr, or not writable.
+struct OutputPathError : OutputError {
+  using OutputError::OutputError;
+};
+
+// Checks, before any tracing, that the job's output can be written without
+// harm: it is absent or a regular file; it is not the scene file nor any of
+// `inputs` (compared with std::filesystem::equivalent); it ends in .exr (so
+// the PNG preview beside it never replaces it); and its folder can be
+// created and holds a new file (a probe file is created and removed).
+// Throws OutputPathError naming the path and the reason.
+void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs = {});
+
 class Session {
  public:
   // Opens the device once (auto: a GPU if any, else the CPU reference).
@@ -56,7 +71,7 @@ class Session {
   const Device& device() const { return *device_; }
 
   // Renders the job on the session's device and writes its outputs
-  // (creating the output's folder). Throws OutputError when they cannot be
+  // (creating the output's folder). checkOutputPath runs first. Throws OutputError when they cannot be
   // written; the result is returned either way only on success.
   RenderResult render(const RenderJob& job) const;
 
