@@ -55,13 +55,27 @@ std::vector<DeviceSpec> listDevices(const std::string& filter) {
 Device::Device(std::unique_ptr<vk_util::Context> vulkan) : vulkan_(std::move(vulkan)) {}
 Device::~Device() = default;
 
-std::unique_ptr<Device> Device::open(DeviceChoice choice, const std::function<void(const std::string&)>& log) {
+namespace {
+
+std::unique_ptr<vk_util::Context> withPipelineCache(std::unique_ptr<vk_util::Context> context,
+                                                    const PipelineCacheOptions& cache,
+                                                    const std::function<void(const std::string&)>& log) {
+  context->openPipelineCache(cache.enabled ? (cache.path.empty() ? context->defaultPipelineCachePath() : cache.path) : "",
+                             log);
+  return context;
+}
+
+}  // namespace
+
+std::unique_ptr<Device> Device::open(DeviceChoice choice, const std::function<void(const std::string&)>& log,
+                                     const PipelineCacheOptions& cache) {
   if (choice == DeviceChoice::Cpu) return std::unique_ptr<Device>(new Device(nullptr));
   std::string why;
   try {
     const auto devices = vk_util::enumerateDevices();
     if (auto index = vk_util::preferredDevice(devices))
-      return std::unique_ptr<Device>(new Device(vk_util::Context::create(devices[*index].index)));
+      return std::unique_ptr<Device>(
+          new Device(withPipelineCache(vk_util::Context::create(devices[*index].index), cache, log)));
     why = devices.empty() ? "no Vulkan device was found" : "no Vulkan device is usable:\n" + vk_util::describeDevices(devices);
   } catch (const vk_util::VulkanError& e) {
     why = e.what();
@@ -71,10 +85,18 @@ std::unique_ptr<Device> Device::open(DeviceChoice choice, const std::function<vo
   return std::unique_ptr<Device>(new Device(nullptr));
 }
 
-std::unique_ptr<Device> Device::open(const DeviceSpec& spec) {
+std::unique_ptr<Device> Device::open(const DeviceSpec& spec, const PipelineCacheOptions& cache,
+                                     const std::function<void(const std::string&)>& log) {
   if (spec.kind == DeviceKind::Cpu) return std::unique_ptr<Device>(new Device(nullptr));
-  return std::unique_ptr<Device>(new Device(vk_util::Context::create(uint32_t(spec.vulkanIndex))));
+  return std::unique_ptr<Device>(
+      new Device(withPipelineCache(vk_util::Context::create(uint32_t(spec.vulkanIndex)), cache, log)));
 }
+
+void Device::savePipelineCache() const {
+  if (vulkan_) vulkan_->savePipelineCache();
+}
+
+std::string Device::pipelineCachePath() const { return vulkan_ ? vulkan_->pipelineCachePath() : ""; }
 
 std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const TracerOptions& options) const {
   if (vulkan_) return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures);

@@ -32,6 +32,14 @@ struct DeviceSpec {
   int vulkanIndex = -1;
 };
 
+// The persistent Vulkan pipeline cache of an opened device.
+struct PipelineCacheOptions {
+  bool enabled = true;
+  // "" : $XDG_CACHE_HOME/spectrace/pipelines-<device UUID>-<driverVersion>.bin
+  // (or $HOME/.cache/...; no file if neither is set).
+  std::string path;
+};
+
 // Every usable Vulkan device, then the CPU reference, filtered by a
 // comma-separated list of "gpu", "cpu" or device names (empty: all).
 std::vector<DeviceSpec> listDevices(const std::string& filter = "");
@@ -40,12 +48,20 @@ class Device {
  public:
   // auto: a hardware GPU if any, else lavapipe, else the CPU reference
   // (saying why through `log`); gpu: a Vulkan device or VulkanError.
-  static std::unique_ptr<Device> open(DeviceChoice choice, const std::function<void(const std::string&)>& log = {});
-  static std::unique_ptr<Device> open(const DeviceSpec& spec);
+  // Vulkan devices load their pipeline cache as `cache` says; notices about
+  // it (an ignored file, a failed save) go to `log`.
+  static std::unique_ptr<Device> open(DeviceChoice choice, const std::function<void(const std::string&)>& log = {},
+                                      const PipelineCacheOptions& cache = {});
+  static std::unique_ptr<Device> open(const DeviceSpec& spec, const PipelineCacheOptions& cache = {},
+                                      const std::function<void(const std::string&)>& log = {});
   ~Device();
 
   DeviceKind kind() const { return vulkan_ ? DeviceKind::Vulkan : DeviceKind::Cpu; }
   std::unique_ptr<Tracer> makeTracer(const CompiledScene& plan, const TracerOptions& options = {}) const;
+  // Writes the pipeline cache to its file if it changed (also done on close).
+  void savePipelineCache() const;
+  // The pipeline cache file in use ("" : none, or the CPU reference).
+  std::string pipelineCachePath() const;
 
  private:
   explicit Device(std::unique_ptr<vk_util::Context> vulkan);

@@ -48,7 +48,7 @@ int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
   const bool live = !command.quiet && isatty(STDERR_FILENO);
   std::function<void(const std::string&)> log;
   if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
-  const Session session(parseDeviceChoice(command.device), log);
+  const Session session(parseDeviceChoice(command.device), log, command.pipelineCache);
 
   std::vector<Row> rows;
   size_t failed = 0, rendered = 0, skipped = 0;

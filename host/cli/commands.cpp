@@ -134,7 +134,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
 
   std::function<void(const std::string&)> log;
   if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
-  const Session session(parseDeviceChoice(command.device), log);
+  const Session session(parseDeviceChoice(command.device), log, command.pipelineCache);
   for (RenderJob& job : jobs) {
     const auto& output = job.output;
     const uint64_t beams = job.beamCount();

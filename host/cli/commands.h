@@ -7,9 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "backend/device.h"
+
 namespace spectrace::cli {
 
 struct RenderCommand {
+  PipelineCacheOptions pipelineCache;           // --pipeline-cache PATH, --no-pipeline-cache
   std::vector<std::filesystem::path> scenes;    // rendered one after another on one device
   // default out/<scene stem>.exr; with several scenes, a folder (DIR/ or an
   // existing directory) that holds <scene stem>.exr
@@ -38,6 +41,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 int runDevices();
 
 struct BatchCommand {
+  PipelineCacheOptions pipelineCache;           // --pipeline-cache PATH, --no-pipeline-cache
   std::filesystem::path jobs;                   // JSON Lines job file
   std::string device = "auto";
   std::optional<std::filesystem::path> outDir;  // relative outputs resolve here (default: the job file's folder)

@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
       "CPU reference threads, 1 to 1024 (default: all)");
   renderCmd->add_flag("!--no-png", render.png, "Do not write the PNG preview");
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
+  renderCmd->add_option("--pipeline-cache", render.pipelineCache.path, "Vulkan pipeline cache file (default: under $XDG_CACHE_HOME/spectrace)");
+  renderCmd->add_flag("!--no-pipeline-cache", render.pipelineCache.enabled, "Neither read nor write a Vulkan pipeline cache file");
   renderCmd->add_flag("--full-spectrum", render.fullSpectrum,
                       "Store every wavelength bin on the device, not only those the lights can reach");
   renderCmd->add_flag("--spectral", render.spectral,
@@ -106,6 +108,8 @@ int main(int argc, char** argv) {
   batchCmd->add_flag("--fail-fast", batch.failFast, "Stop at the first failed job")->excludes(keepGoing);
   batchCmd->add_flag("!--no-png", batch.png, "Do not write PNG previews");
   batchCmd->add_flag("-q,--quiet", batch.quiet, "Print only errors");
+  batchCmd->add_option("--pipeline-cache", batch.pipelineCache.path, "Vulkan pipeline cache file (default: under $XDG_CACHE_HOME/spectrace)");
+  batchCmd->add_flag("!--no-pipeline-cache", batch.pipelineCache.enabled, "Neither read nor write a Vulkan pipeline cache file");
 
   auto* devicesCmd = app.add_subcommand("devices", "List Vulkan devices and the limits that matter here");
 

@@ -47,7 +47,7 @@ uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const Rend
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
-  const auto device = Device::open(options.device, options.log);
+  const auto device = Device::open(options.device, options.log, options.pipelineCache);
   return render(scene, options, *device);
 }
 

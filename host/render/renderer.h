@@ -20,6 +20,7 @@ struct RenderOptions {
   uint64_t firstBeam = 0;    // index of the first beam (disjoint ranges merge exactly)
   uint64_t seed = 1;
   DeviceChoice device = DeviceChoice::Auto;
+  PipelineCacheOptions pipelineCache;  // for the device render(scene, options) opens
   unsigned cpuThreads = 0;           // 0: all hardware threads
   uint32_t workgroupSize = 64;
   CompileOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights

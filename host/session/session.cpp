@@ -53,8 +53,9 @@ bool outputIsComplete(const std::filesystem::path& exr, uint64_t beams) {
   }
 }
 
-Session::Session(DeviceChoice device, const std::function<void(const std::string&)>& log)
-    : device_(Device::open(device, log)) {}
+Session::Session(DeviceChoice device, const std::function<void(const std::string&)>& log,
+                 const PipelineCacheOptions& pipelineCache)
+    : device_(Device::open(device, log, pipelineCache)) {}
 
 Session::~Session() = default;
 
@@ -174,6 +175,7 @@ RenderResult Session::render(const RenderJob& job) const {
   try {
     RenderResult result = spectrace::render(job.scene, options, *device_);
     writeState(result.histogram, result.beamsTraced);
+    device_->savePipelineCache();
     writeExr(output, result.image,
              renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
                             result.beamsTraced, result.wallSeconds));

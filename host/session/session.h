@@ -63,15 +63,17 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
 class Session {
  public:
   // Opens the device once (auto: a GPU if any, else the CPU reference).
-  explicit Session(DeviceChoice device, const std::function<void(const std::string&)>& log = {});
+  explicit Session(DeviceChoice device, const std::function<void(const std::string&)>& log = {},
+                   const PipelineCacheOptions& pipelineCache = {});
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
   const Device& device() const { return *device_; }
 
-  // Renders the job on the session's device and writes its outputs
-  // (creating the output's folder). checkOutputPath runs first. Throws OutputError when they cannot be
+  // Renders the job on the session's device, saves the device's pipeline
+  // cache if it changed, and writes its outputs (creating the output's
+  // folder). checkOutputPath runs first. Throws OutputError when they cannot be
   // written; the result is returned either way only on success.
   RenderResult render(const RenderJob& job) const;
 

@@ -89,8 +89,10 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
   try {
     vk::raii::ShaderModule module(
         device, vk::ShaderModuleCreateInfo{.codeSize = words.size() * 4, .pCode = words.data()});
+    // The context's pipeline cache (if any) skips recompiling what an earlier
+    // run or an earlier pipeline with the same key already compiled.
     pipeline_ = vk::raii::Pipeline(
-        device, nullptr,
+        device, context.pipelineCache(),
         vk::ComputePipelineCreateInfo{
             .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
                       .module = *module,

@@ -297,6 +297,7 @@ std::unique_ptr<Context> Context::create(std::optional<uint32_t> deviceIndex) {
 Context::Context() : loader_(makeLoader()) {}
 
 Context::~Context() {
+  savePipelineCache();
   // Outstanding work would be destroyed under the GPU's feet otherwise.
   try {
     if (*device_) device_.waitIdle();

@@ -103,6 +103,27 @@ class Context {
   uint32_t memoryTypeIndex(uint32_t typeBits, vk::MemoryPropertyFlags wanted,
                            vk::MemoryPropertyFlags preferred = {}) const;
 
+  // Persistent pipeline cache (pipeline_cache.cpp). Creates this device's
+  // VkPipelineCache, seeded from `path` when that file holds a cache whose
+  // header matches this device (header length, version, vendorID, deviceID,
+  // pipelineCacheUUID); a missing file is silently empty, a corrupt,
+  // truncated or foreign one is ignored with "pipeline cache PATH ignored:
+  // WHY" through `log`. An empty `path` gives an in-memory cache that is
+  // never saved. Every ComputePipeline made afterwards uses the cache. Call
+  // at most once, before making pipelines.
+  void openPipelineCache(const std::string& path, std::function<void(const std::string&)> log = {});
+  // Writes the cache to its file atomically (temporary file in the same
+  // folder, fsync, rename) if it has a file and changed since the last load
+  // or save. Failures are reported through the log, never thrown. Also done
+  // by the destructor.
+  void savePipelineCache() const;
+  // Null (no cache) until openPipelineCache.
+  const vk::raii::PipelineCache& pipelineCache() const { return pipelineCache_; }
+  const std::string& pipelineCachePath() const { return pipelineCachePath_; }
+  // $XDG_CACHE_HOME/spectrace/pipelines-<device UUID hex>-<driverVersion>.bin
+  // ($HOME/.cache/... without XDG_CACHE_HOME; "" with neither).
+  std::string defaultPipelineCachePath() const;
+
  private:
   Context();
   void init(std::optional<uint32_t> deviceIndex);
@@ -116,6 +137,10 @@ class Context {
   vk::raii::Device device_{nullptr};
   vk::raii::Queue queue_{nullptr};
   vk::raii::CommandPool commandPool_{nullptr};
+  vk::raii::PipelineCache pipelineCache_{nullptr};
+  std::string pipelineCachePath_;
+  std::function<void(const std::string&)> pipelineCacheLog_;
+  mutable std::vector<uint8_t> pipelineCacheSaved_;  // the file's contents as last loaded or saved
   DeviceInfo info_;
   uint32_t queueFamily_ = 0;
   vk::PhysicalDeviceMemoryProperties memoryProperties_;
