@@ -48,6 +48,16 @@ struct AimRow {
   double fomGain() const { return aimed.fom / analog.fom; }
 };
 
+// Batch warm-up: time from opening a Vulkan device to the first finished
+// render, with an empty (cold) and then a just-saved (warm) pipeline cache,
+// same run.
+struct PipelineCacheRow {
+  std::string deviceName;
+  double coldSeconds = 0, warmSeconds = 0;
+  uint64_t cacheBytes = 0;  // the saved cache file
+  double ratio() const { return coldSeconds / warmSeconds; }
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
@@ -56,6 +66,7 @@ struct BenchReport {
   std::vector<SpecialisationRow> specialisation;
   std::vector<TrimRow> trim;
   std::vector<AimRow> aim;
+  std::vector<PipelineCacheRow> pipelineCache;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };

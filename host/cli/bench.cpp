@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include <unistd.h>
+
 #include "bench/error_bench.h"
 #include "bench/report.h"
 #include "cli/commands.h"
@@ -196,6 +198,48 @@ std::vector<TrimRow> runTrim(const std::vector<DeviceSpec>& devices, const std::
 
 // Aimed against analog sampling on reference scenes (exact answers), each
 // at a beam count where its error is well inside the N^-1/2 regime.
+// Batch warm-up: open the device and render a little, once with an empty
+// pipeline cache file and once with the one that run saved.
+std::vector<PipelineCacheRow> runPipelineCacheStudy(const std::vector<DeviceSpec>& devices,
+                                                    const std::atomic<bool>& cancel) {
+  std::vector<PipelineCacheRow> rows;
+  const Scene scene = throughputScene();
+  const auto folder = std::filesystem::temp_directory_path() / fmt::format("spectrace-bench-{}", ::getpid());
+  const auto file = folder / "pipelines.bin";
+  const auto firstRender = [&](const DeviceSpec& spec) {
+    const auto start = std::chrono::steady_clock::now();
+    {
+      const auto device = Device::open(spec, PipelineCacheOptions{true, file.string()});
+      RenderOptions options;
+      options.beams = 4096;
+      options.cancel = &cancel;
+      render(scene, options, *device);
+    }  // closing the device saves the cache
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  bool printed = false;
+  for (const auto& spec : devices) {
+    if (spec.kind != DeviceKind::Vulkan) continue;
+    if (!printed) {
+      fmt::print("\nBatch: time to first beam (open + 4096 beams), cold vs warm pipeline cache\n");
+      fmt::print("{:<44} {:>9} {:>9} {:>11} {:>12}\n", "device", "cold s", "warm s", "cold : warm", "cache bytes");
+      printed = true;
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(folder, ec);
+    PipelineCacheRow row{spec.name};
+    row.coldSeconds = firstRender(spec);
+    row.cacheBytes = std::filesystem::exists(file) ? std::filesystem::file_size(file) : 0;
+    row.warmSeconds = firstRender(spec);
+    fmt::print("{:<44} {:>9.3f} {:>9.3f} {:>11.2f} {:>12}\n", row.deviceName, row.coldSeconds, row.warmSeconds,
+               row.ratio(), row.cacheBytes);
+    rows.push_back(row);
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
+  return rows;
+}
+
 std::vector<AimRow> runAimStudy(const std::vector<DeviceSpec>& devices, const std::filesystem::path& dir) {
   struct Case {
     const char* scene;
@@ -259,6 +303,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.trim = runTrim(report.devices, dir.parent_path(), cancel);
   }
   if (command.aim) report.aim = runAimStudy(report.devices, dir);
+  if (command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);

@@ -74,6 +74,7 @@ struct BenchCommand {
   double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
   uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
   bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true;
+  bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
 };
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
 

@@ -132,6 +132,7 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-colour", bench.colour, "Skip the colour-from-binning study");
   benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
   benchCmd->add_flag("!--no-aim-study", bench.aim, "Skip the aimed-vs-analog comparison");
+  benchCmd->add_flag("!--no-pipeline-cache-study", bench.pipelineCache, "Skip the cold-vs-warm pipeline cache timing");
 
   try {
     app.parse(argc, argv);
