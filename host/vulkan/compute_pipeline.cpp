@@ -60,49 +60,64 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
                                   pushConstantBytes, info.maxPushConstantsSize, info.name));
 
   const vk::raii::Device& device = context.device();
-  try {
-    setLayout_ = vk::raii::DescriptorSetLayout(
-        device, vk::DescriptorSetLayoutCreateInfo{.bindingCount = uint32_t(layoutBindings.size()),
-                                                  .pBindings = layoutBindings.data()});
-    const vk::PushConstantRange pushRange{
-        .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = pushConstantBytes};
-    const vk::DescriptorSetLayout rawSetLayout = *setLayout_;
-    pipelineLayout_ = vk::raii::PipelineLayout(
-        device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
-                                             .pSetLayouts = &rawSetLayout,
-                                             .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
-                                             .pPushConstantRanges = &pushRange});
-  } catch (const vk::SystemError& e) {
-    throw VulkanError(fmt::format("ComputePipeline: creating the pipeline layout failed: {}", e.what()));
-  }
+  // The compiled objects are shared by every ComputePipeline with the same
+  // key on this context, for the context's life: a batch that makes many
+  // tracers compiles each specialisation once.
+  std::string key(reinterpret_cast<const char*>(words.data()), words.size() * 4);
+  const auto append = [&](uint32_t v) { key.append(reinterpret_cast<const char*>(&v), 4); };
+  append(0xffffffffu);  // separates the code from the rest
+  append(pushConstantBytes);
+  append(uint32_t(bindings_.size()));
+  for (const auto& b : bindings_) append(b.binding), append(b.count);
+  append(uint32_t(specConstants.size()));
+  for (const auto& c : specConstants) append(c.id), append(c.value);
+  compiled_ = std::static_pointer_cast<Compiled>(context.sharedPipeline(key, [&]() -> std::shared_ptr<void> {
+    auto compiled = std::make_shared<Compiled>();
+    try {
+      compiled->setLayout = vk::raii::DescriptorSetLayout(
+          device, vk::DescriptorSetLayoutCreateInfo{.bindingCount = uint32_t(layoutBindings.size()),
+                                                    .pBindings = layoutBindings.data()});
+      const vk::PushConstantRange pushRange{
+          .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = pushConstantBytes};
+      const vk::DescriptorSetLayout rawSetLayout = *compiled->setLayout;
+      compiled->pipelineLayout = vk::raii::PipelineLayout(
+          device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
+                                               .pSetLayouts = &rawSetLayout,
+                                               .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
+                                               .pPushConstantRanges = &pushRange});
+    } catch (const vk::SystemError& e) {
+      throw VulkanError(fmt::format("ComputePipeline: creating the pipeline layout failed: {}", e.what()));
+    }
 
-  std::vector<vk::SpecializationMapEntry> specEntries;
-  std::vector<uint32_t> specValues;
-  for (uint32_t i = 0; i < specConstants.size(); ++i) {
-    specEntries.push_back(vk::SpecializationMapEntry{.constantID = specConstants[i].id, .offset = 4 * i, .size = 4});
-    specValues.push_back(specConstants[i].value);
-  }
-  const vk::SpecializationInfo specInfo{.mapEntryCount = uint32_t(specEntries.size()),
-                                        .pMapEntries = specEntries.data(),
-                                        .dataSize = specValues.size() * 4,
-                                        .pData = specValues.data()};
-  try {
-    vk::raii::ShaderModule module(
-        device, vk::ShaderModuleCreateInfo{.codeSize = words.size() * 4, .pCode = words.data()});
-    // The context's pipeline cache (if any) skips recompiling what an earlier
-    // run or an earlier pipeline with the same key already compiled.
-    pipeline_ = vk::raii::Pipeline(
-        device, context.pipelineCache(),
-        vk::ComputePipelineCreateInfo{
-            .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
-                      .module = *module,
-                      .pName = "main",
-                      .pSpecializationInfo = specConstants.empty() ? nullptr : &specInfo},
-            .layout = *pipelineLayout_});
-  } catch (const vk::SystemError& e) {
-    throw VulkanError(fmt::format("ComputePipeline: creating the compute pipeline on '{}' failed: {}", info.name,
-                                  e.what()));
-  }
+    std::vector<vk::SpecializationMapEntry> specEntries;
+    std::vector<uint32_t> specValues;
+    for (uint32_t i = 0; i < specConstants.size(); ++i) {
+      specEntries.push_back(vk::SpecializationMapEntry{.constantID = specConstants[i].id, .offset = 4 * i, .size = 4});
+      specValues.push_back(specConstants[i].value);
+    }
+    const vk::SpecializationInfo specInfo{.mapEntryCount = uint32_t(specEntries.size()),
+                                          .pMapEntries = specEntries.data(),
+                                          .dataSize = specValues.size() * 4,
+                                          .pData = specValues.data()};
+    try {
+      vk::raii::ShaderModule module(
+          device, vk::ShaderModuleCreateInfo{.codeSize = words.size() * 4, .pCode = words.data()});
+      // The context's pipeline cache (if any) skips recompiling what an
+      // earlier run already compiled.
+      compiled->pipeline = vk::raii::Pipeline(
+          device, context.pipelineCache(),
+          vk::ComputePipelineCreateInfo{
+              .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
+                        .module = *module,
+                        .pName = "main",
+                        .pSpecializationInfo = specConstants.empty() ? nullptr : &specInfo},
+              .layout = *compiled->pipelineLayout});
+    } catch (const vk::SystemError& e) {
+      throw VulkanError(fmt::format("ComputePipeline: creating the compute pipeline on '{}' failed: {}", info.name,
+                                    e.what()));
+    }
+    return compiled;
+  }));
 
   if (totalDescriptors > 0) {
     try {
@@ -114,7 +129,7 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
                                                .maxSets = 1,
                                                .poolSizeCount = 1,
                                                .pPoolSizes = &poolSize});
-      const vk::DescriptorSetLayout rawSetLayout = *setLayout_;
+      const vk::DescriptorSetLayout rawSetLayout = *compiled_->setLayout;
       vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
                                                                            .descriptorSetCount = 1,
                                                                            .pSetLayouts = &rawSetLayout});
@@ -187,11 +202,11 @@ void ComputePipeline::recordDispatch(const vk::raii::CommandBuffer& cmd, const v
   if (pushConstantBytes_ == 0 && pushConstants)
     throw VulkanError("ComputePipeline::recordDispatch: push constants were given, but the pipeline declares none");
 
-  cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
-  if (*set_) cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0, *set_, nullptr);
+  cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *compiled_->pipeline);
+  if (*set_) cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *compiled_->pipelineLayout, 0, *set_, nullptr);
   if (pushConstantBytes_ > 0)
     cmd.pushConstants<unsigned char>(
-        *pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
+        *compiled_->pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0,
         vk::ArrayProxy<const unsigned char>(pushConstantBytes_, static_cast<const unsigned char*>(pushConstants)));
   cmd.dispatch(groupsX, groupsY, groupsZ);
 }

@@ -3,6 +3,8 @@
 // constants and specialisation constants. Borrows its Context, which must
 // outlive it.
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -59,10 +61,15 @@ class ComputePipeline {
   std::vector<BindingSpec> bindings_;
   std::vector<std::vector<bool>> bound_;  // per binding spec, per array element
   uint32_t pushConstantBytes_;
-  // Destroyed in reverse: set before pool, pipeline before its layouts.
-  vk::raii::DescriptorSetLayout setLayout_{nullptr};
-  vk::raii::PipelineLayout pipelineLayout_{nullptr};
-  vk::raii::Pipeline pipeline_{nullptr};
+  // Shared with every ComputePipeline of the same key on the context
+  // (Context::sharedPipeline), which keeps it for its life. Destroyed in
+  // reverse: set before pool, both before the layouts they use.
+  struct Compiled {
+    vk::raii::DescriptorSetLayout setLayout{nullptr};
+    vk::raii::PipelineLayout pipelineLayout{nullptr};  // declared after: destroyed before the set layout
+    vk::raii::Pipeline pipeline{nullptr};
+  };
+  std::shared_ptr<Compiled> compiled_;
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
 };

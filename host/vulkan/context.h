@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -124,6 +125,12 @@ class Context {
   // ($HOME/.cache/... without XDG_CACHE_HOME; "" with neither).
   std::string defaultPipelineCachePath() const;
 
+  // Compiled pipelines kept for the Context's life, by a key of their code,
+  // bindings, push constants and specialisation constants: `make` runs only
+  // for a key not seen before (ComputePipeline's business; the objects are
+  // type-erased to keep this header small). Thread-safe.
+  std::shared_ptr<void> sharedPipeline(const std::string& key, const std::function<std::shared_ptr<void>()>& make) const;
+
  private:
   Context();
   void init(std::optional<uint32_t> deviceIndex);
@@ -141,6 +148,8 @@ class Context {
   std::string pipelineCachePath_;
   std::function<void(const std::string&)> pipelineCacheLog_;
   mutable std::vector<uint8_t> pipelineCacheSaved_;  // the file's contents as last loaded or saved
+  mutable std::mutex pipelinesMutex_;
+  mutable std::map<std::string, std::shared_ptr<void>> pipelines_;  // after device_: destroyed before it
   DeviceInfo info_;
   uint32_t queueFamily_ = 0;
   vk::PhysicalDeviceMemoryProperties memoryProperties_;

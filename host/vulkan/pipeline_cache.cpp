@@ -99,6 +99,14 @@ void Context::openPipelineCache(const std::string& path, std::function<void(cons
   }
 }
 
+std::shared_ptr<void> Context::sharedPipeline(const std::string& key,
+                                              const std::function<std::shared_ptr<void>()>& make) const {
+  const std::lock_guard lock(pipelinesMutex_);
+  auto& slot = pipelines_[key];
+  if (!slot) slot = make();
+  return slot;
+}
+
 void Context::savePipelineCache() const {
   if (!*pipelineCache_ || pipelineCachePath_.empty()) return;
   const auto fail = [&](const std::string& why) {

@@ -334,6 +334,44 @@ TEST_F(VulkanCompute, Int64AtomicCountersAreExact) {
   EXPECT_EQ(slots[0], 3 * (n / kSlots + 1) * addend);
 }
 
+// Pipelines of one key share their compiled objects on the context (made
+// once), yet each keeps its own descriptor set.
+TEST_F(VulkanCompute, SameKeySharesCompiledPipelineButNotBindings) {
+  int made = 0;
+  const auto make = [&]() -> std::shared_ptr<void> { ++made; return std::make_shared<int>(made); };
+  const auto first = ctx->sharedPipeline("test key", make);
+  const auto second = ctx->sharedPipeline("test key", make);
+  const auto other = ctx->sharedPipeline("other key", make);
+  EXPECT_EQ(made, 2);
+  EXPECT_EQ(first, second);
+  EXPECT_NE(first, other);
+
+  constexpr uint32_t n = 1000;
+  const uint32_t groupsX = (n + 2 * kLocalSize - 1) / (2 * kLocalSize);
+  const Push push{.addend = 1, .invocations = n, .rowInvocations = groupsX * kLocalSize};
+  auto p1 = makePipeline();
+  auto p2 = makePipeline();
+  Buffer a1(*ctx, 5 * sizeof(uint64_t), {}, MemoryPlacement::HostVisible), s1(*ctx, kSlots * 8, {}, MemoryPlacement::HostVisible);
+  Buffer a2(*ctx, 5 * sizeof(uint64_t), {}, MemoryPlacement::HostVisible), s2(*ctx, kSlots * 8, {}, MemoryPlacement::HostVisible);
+  for (Buffer* b : {&a1, &s1, &a2, &s2}) b->fillZero();
+  p1.bindBuffer(0, 0, a1);
+  p1.bindBuffer(0, 1, s1);
+  p2.bindBuffer(0, 0, a2);
+  p2.bindBuffer(0, 1, s2);
+  ctx->submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+    p1.recordDispatch(cmd, &push, groupsX, 2);
+    computeBarrier(cmd);
+    p2.recordDispatch(cmd, &push, groupsX, 2);
+    computeBarrier(cmd);
+    p2.recordDispatch(cmd, &push, groupsX, 2);
+  });
+  std::vector<uint64_t> got1(5), got2(5);
+  a1.download(got1.data(), 40);
+  a2.download(got2.data(), 40);
+  EXPECT_EQ(got1[0], n);
+  EXPECT_EQ(got2[0], 2 * uint64_t(n));
+}
+
 TEST_F(VulkanCompute, DispatchBeyondTheGroupLimitThrows) {
   Buffer a(*ctx, 64, {}, MemoryPlacement::DeviceLocal);
   auto pipeline = makePipeline();
