@@ -61,6 +61,17 @@ Session::~Session() = default;
 
 namespace {
 
+// A finished image: the EXR, and the PNG preview beside it when asked for.
+void writeImage(const std::filesystem::path& output, const RenderImage& image, const ImageMetadata& metadata,
+                bool png) {
+  writeExr(output, image, metadata);
+  if (png) {
+    auto preview = output;
+    preview.replace_extension(".png");
+    writePngPreview(preview, image);
+  }
+}
+
 void prepareFolder(const std::filesystem::path& output) {
   const auto folder = output.parent_path();
   if (folder.empty()) return;
@@ -176,14 +187,10 @@ RenderResult Session::render(const RenderJob& job) const {
     RenderResult result = spectrace::render(job.scene, options, *device_);
     writeState(result.histogram, result.beamsTraced);
     device_->savePipelineCache();
-    writeExr(output, result.image,
-             renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
-                            result.beamsTraced, result.wallSeconds));
-    if (job.png) {
-      auto png = output;
-      png.replace_extension(".png");
-      writePngPreview(png, result.image);
-    }
+    writeImage(output, result.image,
+               renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
+                              result.beamsTraced, result.wallSeconds),
+               job.png);
     return result;
   } catch (const ImageIoError& e) {
     throw OutputError(e.what());
@@ -234,14 +241,10 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
                   spectral || job.scene.outputSpectral);
   prepareFolder(output);
   try {
-    writeExr(output, result.image,
-             renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,
-                            result.beamsTraced, 0.0));
-    if (png) {
-      auto preview = output;
-      preview.replace_extension(".png");
-      writePngPreview(preview, result.image);
-    }
+    writeImage(output, result.image,
+               renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,
+                              result.beamsTraced, 0.0),
+               png);
   } catch (const ImageIoError& e) {
     throw OutputError(e.what());
   }
