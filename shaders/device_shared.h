@@ -83,7 +83,9 @@ START_BINDING(SpecConstantId)
   kSpecSelectLight = 3,
   kSpecPinhole = 4,
   kSpecExactColour = 5,
-  kSpecAim = 6
+  kSpecAim = 6,
+  kSpecHistogramChunks = 7,  // histogram buffers in use; kMaxHistogramChunks + 1: decided at run time
+  kSpecCountBeams = 8        // 0: every weight is one unit, so the host sums the bins instead
 END_BINDING();
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;

@@ -20,6 +20,9 @@
 #ifndef SPECTRACE_EXACT_COLOUR
 #define SPECTRACE_EXACT_COLOUR (constants.exactColour != 0u)
 #endif
+#ifndef SPECTRACE_SINGLE_CHUNK
+#define SPECTRACE_SINGLE_CHUNK false  // the film may span several histogram chunks
+#endif
 #ifndef SPECTRACE_SQUARED_WEIGHTS
 #define SPECTRACE_SQUARED_WEIGHTS (constants.weightUnits != 1u)
 #endif

@@ -7,12 +7,12 @@
 // The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
 // camera frame and looks along +z, so a beam counts only when it travels
 // towards -z from z > 0 (with a pinhole: from beyond the aperture plane and
-// through the aperture disk). Returns the pixel index, or false for a miss.
+// through the aperture disk). Returns the pixel's (column, row), or false for a miss.
 // A beam parallel to the sensor (direction.z == 0) never reaches the
 // division; NaN or infinite hit points fail the bounds tests.
 FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetre, uint pixelsX,
-                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uint) pixel) {
-  pixel = 0u;
+                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uvec2) cell) {
+  cell = uvec2(0u, 0u);
   if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
   PRECISE float hx;
   PRECISE float hy;
@@ -37,7 +37,7 @@ FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetr
   PRECISE float fy = flip ? (hy + halfSize.y) * pixelsPerMetre.y : (halfSize.y - hy) * pixelsPerMetre.y;
   uint column = min(uint(max(fx, 0.0f)), pixelsX - 1u);
   uint row = min(uint(max(fy, 0.0f)), pixelsY - 1u);
-  pixel = row * pixelsX + column;
+  cell = uvec2(column, row);
   return true;
 }
 
@@ -86,22 +86,21 @@ FN uint64_t squaredWeightUnitsOf(float ratio, float u) {
   return roundStochastic(scaled, u);
 }
 
-// Adds a beam that hit `pixel` (row-major over the sensor) in stored bin
+// Adds a beam that hit pixel `cell` (column, row of the sensor) in stored bin
 // `bin` to the film: its weight to the bin, its own CMF values (exact
 // colour) and its squared weight, through the includer's addCount, in the
 // layout of device_shared.h (countersPerPixelOf). Returns false for a pixel
 // outside the stored window, which the host proves unreachable (the tests
 // against the whole sensor would show a disproof); the guard keeps such a
 // beam in bounds.
-FN bool countBeam(uint pixel, uint bin, float lambda, float ratio, float spareUniform) {
-  uint row = pixel / constants.pixelsX;
-  uint column = pixel - row * constants.pixelsX;
-  uint windowRow = row - constants.windowY0;  // wraps to large when row < windowY0
-  uint windowColumn = column - constants.windowX0;
+FN bool countBeam(uvec2 cell, uint bin, float lambda, float ratio, float spareUniform) {
+  uint windowRow = cell.y - constants.windowY0;  // wraps to large when row < windowY0
+  uint windowColumn = cell.x - constants.windowX0;
   bool inside = windowRow < constants.windowHeight && windowColumn < constants.windowWidth;
   if (inside) {
     uint stored = windowRow * constants.windowWidth + windowColumn;
-    uint chunk = stored / constants.pixelsPerChunk;
+    // One chunk (the usual case, and always on the CPU) needs no division.
+    uint chunk = SPECTRACE_SINGLE_CHUNK ? 0u : stored / constants.pixelsPerChunk;
     uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
     addCount(chunk, base + bin, weightUnitsOf(ratio, spareUniform));
     bool exactColour = SPECTRACE_EXACT_COLOUR;

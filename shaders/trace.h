@@ -11,11 +11,11 @@
 #include "sensor.h"
 
 // Returns whether beam `beamIndex` reaches the camera with weight, and
-// where: the pixel and stored wavelength bin, with its weight ratio (> 0),
+// where: the pixel (column, row) and stored wavelength bin, with its weight ratio (> 0),
 // its wavelength and a spare uniform (for rounding). Every random number
 // comes from (seed, beamIndex, block), so the result is independent of
 // batching, threads and device.
-FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform,
+FN bool traceBeam(uint64_t beamIndex, OUT(uvec2) cell, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform,
                   OUT(float) ratio) {
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
@@ -35,20 +35,20 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uint) pixel, OUT(uint) bin, OUT(float)
   bool travelling = transportBeam(beamIndex, origin, direction, ratio);
   bool hit = travelling && hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
                                      constants.pixelsX, constants.pixelsY, constants.apertureDistance,
-                                     constants.apertureRadiusSq, pixel);
+                                     constants.apertureRadiusSq, cell);
   return hit && ratio > 0.0f;
 }
 
 // Traces beam `beamIndex` and, when it reaches the camera, counts it into
 // the film. Returns whether it was counted.
 FN bool traceAndCountBeam(uint64_t beamIndex) {
-  uint pixel;
+  uvec2 cell;
   uint bin;
   float lambda;
   float spareUniform;
   float ratio;
-  bool hit = traceBeam(beamIndex, pixel, bin, lambda, spareUniform, ratio);
-  return hit && countBeam(pixel, bin, lambda, ratio, spareUniform);
+  bool hit = traceBeam(beamIndex, cell, bin, lambda, spareUniform, ratio);
+  return hit && countBeam(cell, bin, lambda, ratio, spareUniform);
 }
 
 #endif  // SPECTRACE_TRACE_H

@@ -19,12 +19,16 @@ layout(constant_id = kSpecSelectLight) const uint selectLight = 1u;  // 0: one l
 layout(constant_id = kSpecPinhole) const uint pinholeMode = 2u;      // 0 bare, 1 pinhole, 2 run time
 layout(constant_id = kSpecExactColour) const uint exactColourMode = 2u;  // 0 off, 1 on, 2 run time
 layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no light aimed, 1 some, 2 run time
+// Always set from the film (not a scene feature).
+layout(constant_id = kSpecHistogramChunks) const uint histogramChunks = kMaxHistogramChunks + 1u;
+layout(constant_id = kSpecCountBeams) const uint countBeamsOnDevice = 1u;
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
 #define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
 #define SPECTRACE_AIM (aimMode != 0u)
 #define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
 #define SPECTRACE_SQUARED_WEIGHTS (aimMode != 0u && constants.weightUnits != 1u)
+#define SPECTRACE_SINGLE_CHUNK (histogramChunks == 1u)
 
 layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
   TraceConstants constants;
@@ -58,8 +62,14 @@ uint64_t readSpectralCdf(uint i) { return intervals[i].cdfLow; }
 LightRecord readLight(uint i) { return lights[i]; }
 SpectralInterval readInterval(uint i) { return intervals[i]; }
 vec3 readCmf(uint i) { return cmfTable[i]; }
-// Constant indices only: no non-uniform descriptor indexing needed.
+// Constant indices only: no non-uniform descriptor indexing needed. With
+// one chunk there is no switch: on lavapipe each case of a divergent switch
+// costs a pass over the lanes.
 void addCount(uint chunk, uint index, uint64_t amount) {
+  if (histogramChunks == 1u) {
+    atomicAdd(histogram[0].counts[index], amount);
+    return;
+  }
   switch (chunk) {
     case 0u: atomicAdd(histogram[0].counts[index], amount); break;
     case 1u: atomicAdd(histogram[1].counts[index], amount); break;
@@ -74,28 +84,36 @@ void addCount(uint chunk, uint index, uint64_t amount) {
 
 #include "trace.h"
 
-// Counted beams of this workgroup, added to stats with one atomic.
+// Counted beams of this workgroup, added to stats with one atomic. Not
+// needed when every counted beam adds one unit to its bin: the host sums the
+// bins instead, and the shader has no barrier (which lavapipe runs by
+// splitting the shader into coroutines).
 shared uint groupCounted;
 
 void main() {
-  if (gl_LocalInvocationIndex == 0u) groupCounted = 0u;
-  barrier();
+  if (countBeamsOnDevice != 0u) {
+    if (gl_LocalInvocationIndex == 0u) groupCounted = 0u;
+    barrier();
+  }
   uint local = gl_GlobalInvocationID.y * push.beamsPerRow + gl_GlobalInvocationID.x;
   if (local < push.beamCount) {
     uint64_t beamIndex = push.beamBase + uint64_t(local);
     if (recordBeams != 0u) {
-      uint pixel;
+      uvec2 cell;
       uint bin;
       float lambda;
       float spareUniform;
       float ratio;
-      bool hit = traceBeam(beamIndex, pixel, bin, lambda, spareUniform, ratio);
+      bool hit = traceBeam(beamIndex, cell, bin, lambda, spareUniform, ratio);
+      uint pixel = cell.y * constants.pixelsX + cell.x;
       beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(weightUnitsOf(ratio, spareUniform)), 0u)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
-    } else if (traceAndCountBeam(beamIndex)) {
+    } else if (traceAndCountBeam(beamIndex) && countBeamsOnDevice != 0u) {
       atomicAdd(groupCounted, 1u);
     }
   }
-  barrier();
-  if (gl_LocalInvocationIndex == 0u && groupCounted != 0u) atomicAdd(stats.countedBeams, uint64_t(groupCounted));
+  if (countBeamsOnDevice != 0u) {
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && groupCounted != 0u) atomicAdd(stats.countedBeams, uint64_t(groupCounted));
+  }
 }

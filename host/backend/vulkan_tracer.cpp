@@ -65,11 +65,18 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
           {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)}};
 }
 
+// Whether the trace pass counts counted beams itself: only when beams carry
+// fractional weights. Otherwise each counted beam adds exactly one unit to
+// one bin, and the sum of the bins is the count.
+bool countsBeamsOnDevice(const CompiledScene& plan) { return plan.film.weightUnits != 1; }
+
 // All specialisation constants of the trace pipeline.
-std::vector<vk_util::SpecConstant> specConstants(uint32_t workgroupSize, bool record,
-                                                 const std::vector<vk_util::SpecConstant>& scene) {
+std::vector<vk_util::SpecConstant> specConstants(uint32_t workgroupSize, bool record, const HistogramSplit& split,
+                                                 bool countBeams, const std::vector<vk_util::SpecConstant>& scene) {
   std::vector<vk_util::SpecConstant> constants = {{device::kSpecWorkgroupSize, workgroupSize},
-                                                  {device::kSpecRecordBeams, record ? 1u : 0u}};
+                                                  {device::kSpecRecordBeams, record ? 1u : 0u},
+                                                  {device::kSpecHistogramChunks, split.chunkCount},
+                                                  {device::kSpecCountBeams, countBeams ? 1u : 0u}};
   constants.insert(constants.end(), scene.begin(), scene.end());
   return constants;
 }
@@ -111,7 +118,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       cmfTable_(uploadedBuffer(context, plan.device.cmfTable)),
       stats_(context, sizeof(device::TraceStats), {}, MemoryPlacement::HostVisible),
       tracePipeline_(context, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
-                     sizeof(device::TracePush), specConstants(workgroupSize, false, traceSpecialisation_)),
+                     sizeof(device::TracePush), specConstants(workgroupSize, false, split_, countsBeamsOnDevice(plan), traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
                        sizeof(device::ResolvePush), {{device::kSpecWorkgroupSize, workgroupSize}}),
       timestamps_(context, 2) {
@@ -175,7 +182,7 @@ uint64_t VulkanTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::
 
 std::vector<device::BeamRecord> VulkanTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
   vk_util::ComputePipeline recorder(context_, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
-                                    sizeof(device::TracePush), specConstants(workgroupSize_, true, traceSpecialisation_));
+                                    sizeof(device::TracePush), specConstants(workgroupSize_, true, split_, countsBeamsOnDevice(plan_), traceSpecialisation_));
   Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(device::BeamRecord), 16), {},
                  MemoryPlacement::HostVisible);
   bindTraceBuffers(recorder, records);  // the counters and stats are left untouched in record mode
@@ -207,7 +214,6 @@ SpectralHistogram VulkanTracer::download() const {
   SpectralHistogram histogram = plan_.film.emptyHistogram();
   device::TraceStats stats{};
   stats_.download(&stats, sizeof(stats));
-  histogram.countedBeams = stats.countedBeams;
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (const auto& chunk : histogramChunks_) {
@@ -216,6 +222,7 @@ SpectralHistogram VulkanTracer::download() const {
     unpackDeviceCounters(counters, plan_.film, pixel, histogram);
     pixel += counters.size() / plan_.film.countersPerPixel();
   }
+  histogram.countedBeams = countsBeamsOnDevice(plan_) ? stats.countedBeams : histogram.total();
   return histogram;
 }
 

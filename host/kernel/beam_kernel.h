@@ -35,7 +35,9 @@ class BeamKernel {
   // kernel is small, so each thread uses its own copy.)
   bool trace(uint64_t index, uint& pixelOut, uint& binOut, uint64_t* unitsOut = nullptr) {
     float lambda, spare, ratio;
-    const bool hit = traceBeam(index, pixelOut, binOut, lambda, spare, ratio);
+    uvec2 cell;
+    const bool hit = traceBeam(index, cell, binOut, lambda, spare, ratio);
+    pixelOut = cell.y * constants.pixelsX + cell.x;
     if (unitsOut) *unitsOut = hit ? weightUnitsOf(ratio, spare) : 0;
     return hit;
   }
@@ -64,6 +66,7 @@ class BeamKernel {
 
  public:
   // The shared functions are public so tests can probe them one by one.
+#define SPECTRACE_SINGLE_CHUNK true  // `counters` holds every stored pixel
 #include "trace.h"
 };
 
