@@ -13,21 +13,6 @@ FN float uniformFromWord(uint x) { return float(x >> 8) * (1.0f / 16777216.0f); 
 
 FN uint64_t joinWords(uint lo, uint hi) { return (uint64_t(hi) << 32) | uint64_t(lo); }
 
-// Largest index j in [0, count) with cdfLow[first + j] <= u, where
-// cdfLow[first] == 0. Entries with equal cdfLow (zero probability) are never
-// returned. ceil(log2(count)) steps, the same for every u.
-#define SPECTRACE_CDF_SEARCH(NAME, READ)              \
-  FN uint NAME(uint first, uint count, uint64_t u) {  \
-    uint lo = 0u;                                     \
-    uint len = count;                                 \
-    while (len > 1u) {                                \
-      uint step = len / 2u;                          \
-      if (READ(first + lo + step) <= u) lo += step;   \
-      len -= step;                                    \
-    }                                                 \
-    return first + lo;                                \
-  }
-
 // cos and sin of 2*pi*u for u = k * 2^-24. Quadrant and octant reduction is
 // exact; the polynomials are the Taylor series to x^11 / x^12 on
 // [0, pi/4], whose truncation error (< 1e-11) is far below float rounding.

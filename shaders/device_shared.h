@@ -38,7 +38,8 @@ START_BINDING(TraceBinding)
   kBindingHistogram = 3,    // array of kMaxHistogramChunks
   kBindingBeamRecords = 4,  // only written with kSpecRecordBeams
   kBindingCmfTable = 5,     // vec3 per node, for exact colour
-  kBindingTraceStats = 6    // TraceStats
+  kBindingTraceStats = 6,   // TraceStats
+  kBindingAliasColumns = 7  // AliasColumn: the light choice's, then each light's spectral table's
 END_BINDING();
 START_BINDING(ResolveBinding)
   kBindingResolveConstants = 0,
@@ -110,13 +111,14 @@ SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (sp
 // One light, in the camera frame (metres, single precision). Built on the
 // host from the scene in double precision.
 struct LightRecord {
-  uint64_t selectCdfLow;  // P(light) = (next light's value, or 2^64, - this) / 2^64
+  uint64_t selectCdfLow;  // P(light) = (next light's value, or 2^64, - this) / 2^64,
+                          // drawn through the alias columns (AliasColumn)
   uint type;
   uint spectralFirst;     // first SpectralInterval of this light
   uint spectralCount;     // number of intervals (>= 1)
   float param0;           // spot: 1 - cos(half angle); disk/laser: radius; rect: width
   float param1;           // rect: height
-  float padding0;
+  uint spectralAliasFirst;  // first AliasColumn of the spectral table (2^spectralAliasBits columns)
   vec3 position;          // point/spot/laser origin, disk/rect centre
   vec3 axis;              // spot/laser direction, disk/rect normal
   vec3 tangent;           // with bitangent, completes an orthonormal frame
@@ -130,17 +132,28 @@ struct LightRecord {
   vec3 aimAxis;           // point/spot: cone axis; laser: (centre of the origin disk in (tangent, bitangent), 0)
   vec3 aimTangent;        // point/spot: completes the cone's frame
   vec3 aimBitangent;
-  float padding1;
+  uint spectralAliasBits;
 };
 
 // One interval of a light's piecewise-linear SPD, restricted to the
 // spectrum range and trimmed to its support.
 struct SpectralInterval {
-  uint64_t cdfLow;   // P(interval) = (next cdfLow, or 2^64 after the light's last, - this) / 2^64
+  uint64_t cdfLow;   // P(interval) = (next cdfLow, or 2^64 after the light's last, - this) / 2^64,
+                     // drawn through the light's alias columns (AliasColumn)
   float lambda0;     // nm
   float width;       // nm (0 for a Dirac line)
   float slope;       // (f1 - f0) / (f1 + f0), in [-1, 1]
   float padding0;
+};
+
+// One column of an alias table (host/spectrum/alias_table.h): a 64-bit
+// uniform u whose top `bits` select this column draws the column's own
+// entry when (u << bits) < threshold, else `alias`. Each entry's
+// probability is exactly its integer CDF width / 2^64.
+struct AliasColumn {
+  uint64_t threshold;
+  uint alias;
+  uint padding0;
 };
 
 // Exact colour: each counted beam also adds its own x̄, ȳ, z̄ (the CMF at
@@ -185,7 +198,7 @@ struct TraceConstants {
   uint windowY0;
   uint windowWidth;
   uint windowHeight;
-  uint padding0;
+  uint lightAliasBits;      // the light choice's alias columns: 2^lightAliasBits, from column 0
   uint64_t seed;
 };
 
@@ -266,7 +279,7 @@ struct BindingSlot {
 inline constexpr BindingSlot kTraceBindings[] = {
     {kBindingTraceConstants, 1}, {kBindingLights, 1},      {kBindingSpectralIntervals, 1},
     {kBindingHistogram, kMaxHistogramChunks},               {kBindingBeamRecords, 1},
-    {kBindingCmfTable, 1},       {kBindingTraceStats, 1}};
+    {kBindingCmfTable, 1},       {kBindingTraceStats, 1},       {kBindingAliasColumns, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},
                                                    {kBindingResolvedPixels, 1},

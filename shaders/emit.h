@@ -11,24 +11,30 @@
 #include "lights/rect.h"
 #include "lights/laser.h"
 
-SPECTRACE_CDF_SEARCH(searchLight, readLightCdf)
-SPECTRACE_CDF_SEARCH(searchSpectralInterval, readSpectralCdf)
+// The entry an alias table of 2^bits columns from column `first` draws for
+// the 64-bit uniform u (host/spectrum/alias_table.h): O(1), one or two
+// reads, with each entry's probability exactly its integer CDF width.
+FN uint aliasLookup(uint first, uint bits, uint64_t u) {
+  uint column = bits == 0u ? 0u : uint(u >> (64u - bits));
+  AliasColumn entry = readAliasColumn(first + column);
+  return (u << bits) < entry.threshold ? column : entry.alias;
+}
 
-// A light in proportion to its sampled power: an exact integer CDF over a
-// 64-bit uniform from the light block (drawn only when there is a choice).
+// A light in proportion to its sampled power, from a 64-bit uniform of the
+// light block (drawn only when there is a choice).
 FN uint chooseLight(uint64_t seed, uint64_t beamIndex) {
   uint lightIndex = 0u;
   if (SPECTRACE_SELECT_LIGHT) {
     uvec4 select = philox4x32(seed, beamIndex, kRngBlockLight);
-    lightIndex = searchLight(0u, constants.lightCount, joinWords(select.x, select.y));
+    lightIndex = aliasLookup(0u, constants.lightAliasBits, joinWords(select.x, select.y));
   }
   return lightIndex;
 }
 
-// A wavelength from one light's spectral table: the interval by an exact
-// integer CDF over a 64-bit uniform, the position inside it in closed form.
-FN float drawWavelength(uint spectralFirst, uint spectralCount, uint64_t intervalUniform, float positionUniform) {
-  uint intervalIndex = searchSpectralInterval(spectralFirst, spectralCount, intervalUniform);
+// A wavelength from a light's spectral table: the interval through its
+// alias columns from a 64-bit uniform, the position inside it in closed form.
+FN float drawWavelength(LightRecord light, uint64_t intervalUniform, float positionUniform) {
+  uint intervalIndex = light.spectralFirst + aliasLookup(light.spectralAliasFirst, light.spectralAliasBits, intervalUniform);
   SpectralInterval interval = readInterval(intervalIndex);
   return wavelengthInInterval(interval.lambda0, interval.width, interval.slope, positionUniform);
 }

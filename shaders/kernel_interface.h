@@ -3,8 +3,7 @@
 // host/kernel/beam_kernel.h) provides, besides the types of
 // device_shared.h and a `constants` of type TraceConstants:
 //   uvec4 philox4x32(uint64_t seed, uint64_t index, uint block)  random words
-//   uint64_t readLightCdf(uint light)         LightRecord.selectCdfLow
-//   uint64_t readSpectralCdf(uint interval)   SpectralInterval.cdfLow
+//   AliasColumn readAliasColumn(uint column)  light choice and spectral tables
 //   LightRecord readLight(uint light)
 //   SpectralInterval readInterval(uint interval)
 //   vec3 readCmf(uint node)                   the observer's CMF table
@@ -22,8 +21,7 @@ namespace spectrace::device {
 template <typename K>
 concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
   { K::philox4x32(amount, amount, i) };
-  { k.readLightCdf(i) } -> std::same_as<uint64_t>;
-  { k.readSpectralCdf(i) } -> std::same_as<uint64_t>;
+  { k.readAliasColumn(i) } -> std::same_as<AliasColumn>;
   { k.readLight(i) } -> std::same_as<LightRecord>;
   { k.readInterval(i) } -> std::same_as<SpectralInterval>;
   { k.readCmf(i) };
@@ -32,8 +30,7 @@ concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
 }  // namespace spectrace::device
 #else
 uvec4 philox4x32(uint64_t seed, uint64_t index, uint block);
-uint64_t readLightCdf(uint light);
-uint64_t readSpectralCdf(uint interval);
+AliasColumn readAliasColumn(uint column);
 LightRecord readLight(uint light);
 SpectralInterval readInterval(uint interval);
 vec3 readCmf(uint node);

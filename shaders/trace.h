@@ -20,8 +20,7 @@ FN bool traceBeam(uint64_t beamIndex, OUT(uvec2) cell, OUT(uint) bin, OUT(float)
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
   LightRecord light = readLight(chooseLight(constants.seed, beamIndex));
-  lambda = drawWavelength(light.spectralFirst, light.spectralCount, joinWords(spectral.x, spectral.y),
-                          uniformFromWord(spectral.z));
+  lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
   spareUniform = uniformFromWord(geometry.w);
   // The bin of the full spectrum, then its place among the stored bins (the
   // host stores every bin a light can reach, so the clamp never acts).

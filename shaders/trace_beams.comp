@@ -45,6 +45,9 @@ layout(set = 0, binding = kBindingHistogram, scalar) buffer HistogramChunk {
 layout(set = 0, binding = kBindingBeamRecords, scalar) writeonly buffer BeamRecordBlock {
   BeamRecord beamRecords[];
 };
+layout(set = 0, binding = kBindingAliasColumns, scalar) readonly buffer AliasBlock {
+  AliasColumn aliasColumns[];
+};
 layout(set = 0, binding = kBindingCmfTable, scalar) readonly buffer CmfBlock {
   vec3 cmfTable[];
 };
@@ -57,8 +60,7 @@ layout(push_constant, scalar) uniform PushBlock {
 
 // The includer contract (kernel_interface.h).
 #include "philox.glsl"
-uint64_t readLightCdf(uint i) { return lights[i].selectCdfLow; }
-uint64_t readSpectralCdf(uint i) { return intervals[i].cdfLow; }
+AliasColumn readAliasColumn(uint i) { return aliasColumns[i]; }
 LightRecord readLight(uint i) { return lights[i]; }
 SpectralInterval readInterval(uint i) { return intervals[i]; }
 vec3 readCmf(uint i) { return cmfTable[i]; }

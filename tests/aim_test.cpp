@@ -146,7 +146,9 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   // 5 (sqrt(n) / 2) (1 / Y + 1 / B) relative.
   Scene scene = aimScene(LightType::Disk, true);
   scene.lights[0].spd = makeLineSpd(550.0);
-  const CompiledScene plan = compileScene(scene, 505);
+  CompileOptions perBeamColour;
+  perBeamColour.colourFromBins = false;  // the per-beam colour counters are under test
+  const CompiledScene plan = compileScene(scene, 505, perBeamColour);
   ASSERT_TRUE(plan.film.weighted());
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   gpu.trace(0, 1'000'000);
@@ -155,7 +157,7 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
   const double units = double(h.total());
   ASSERT_GT(h.countedBeams, 10'000u);
-  const float ybar = device::BeamKernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.cmfTable).cmfAtWavelength(550.0f).y;
+  const float ybar = device::BeamKernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns, plan.device.cmfTable).cmfAtWavelength(550.0f).y;
   const double expected = double(ybar) * device::kColourFixedPointScale / device::kWeightUnitsFractional;
   const double tolerance = 2.5 * std::sqrt(double(h.countedBeams)) * (1.0 / y + 1.0 / units);
   std::printf("Y sum / bin sum = %.9f, ybar(550) / 16 = %.9f (tolerance %.2g relative)\n", y / units, expected, tolerance);

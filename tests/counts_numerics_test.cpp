@@ -294,7 +294,7 @@ TEST(CountsNumerics, BeamStreamsDoNotRepeatPast2To32) {
     const CompiledScene shiftedPlan = compileScene(scene, s.seed);
     VulkanTracer shiftedGpu(testing::sharedVulkan(), shiftedPlan);
     const auto shifted = shiftedGpu.traceRecorded(s.firstBeam, kCount);
-    device::BeamKernel cpu(shiftedPlan.device.constants, shiftedPlan.device.lights, shiftedPlan.device.intervals);
+    device::BeamKernel cpu(shiftedPlan.device.constants, shiftedPlan.device.lights, shiftedPlan.device.intervals, shiftedPlan.device.aliasColumns);
     uint64_t same = 0, cpuDiffers = 0;
     for (uint32_t i = 0; i < kCount; ++i) {
       if (base[i].pixel != device::kBeamMissed && testing::sameRecord(base[i], shifted[i])) ++same;

@@ -20,7 +20,7 @@ CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads)
 std::string CpuTracer::deviceName() const { return fmt::format("CPU reference, {} threads", threads_); }
 
 uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
-  const device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.cmfTable, counters_);
+  const device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable, counters_);
   std::atomic<uint64_t> counted{0};
   // Threads take blocks of beams in order. When cancelled, each finishes
   // its block, so the traced beams stay one contiguous prefix.
@@ -74,7 +74,7 @@ void CpuTracer::upload(const SpectralHistogram& histogram) {
 RenderImage CpuTracer::develop(const ResolveParameters& parameters) { return resolveOnCpu(download(), parameters); }
 
 std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
-  device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.cmfTable);
+  device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable);
   std::vector<device::BeamRecord> records(count);
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t pixel, bin;

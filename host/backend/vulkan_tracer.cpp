@@ -114,6 +114,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
       lights_(uploadedBuffer(context, plan.device.lights)),
       intervals_(uploadedBuffer(context, plan.device.intervals)),
+      aliasColumns_(uploadedBuffer(context, plan.device.aliasColumns)),
       unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
       cmfTable_(uploadedBuffer(context, plan.device.cmfTable)),
       stats_(context, sizeof(device::TraceStats), {}, MemoryPlacement::HostVisible),
@@ -140,6 +141,7 @@ void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Bu
   pipeline.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
   pipeline.bindBuffer(device::kBindingLights, 0, lights_);
   pipeline.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
+  pipeline.bindBuffer(device::kBindingAliasColumns, 0, aliasColumns_);
   pipeline.bindBuffer(device::kBindingBeamRecords, 0, beamRecords);
   pipeline.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);

@@ -64,6 +64,7 @@ class VulkanTracer final : public Tracer {
   vk_util::Buffer traceConstants_;
   vk_util::Buffer lights_;
   vk_util::Buffer intervals_;
+  vk_util::Buffer aliasColumns_;
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
   vk_util::Buffer cmfTable_;
   vk_util::Buffer stats_;  // TraceStats

@@ -117,6 +117,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.plan.trimPixels = !command.fullSensor;
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
+    options.plan.colourFromBins = !command.perBeamColour;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     checkBeamRange(command.firstBeam, job.beamCount());
     if (int code = applyStateOptions(command, job); code != 0) return code;

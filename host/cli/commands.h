@@ -29,6 +29,7 @@ struct RenderCommand {
   bool spectral = false;       // spectral EXR channels (also when the scene's output.spectral is true)
   bool fullSensor = false;     // store every pixel, not only those beams can reach
   bool general = false;        // the general trace pipeline, not one specialised to the scene
+  bool perBeamColour = false;  // per-beam colour counters even where colour from bins applies
   bool noAim = false;          // analog emission: beams in every direction the lights emit
   // The exact render state (film/film_state.h), rewritten at checkpoints
   // and at the end; one scene only.

@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "spectrum/cie_data.h"
+#include "spectrum/wavelength_sampler.h"
 
 namespace spectrace {
 namespace {
@@ -84,6 +85,52 @@ std::vector<std::array<double, 3>> binAveragedCmf(const Observer& obs, double mi
     for (int c = 0; c < 3; ++c) out[size_t(b)][c] = sum[c] / width;
   }
   return out;
+}
+
+std::vector<std::array<double, 3>> sampledBinCmfMeans(std::span<const device::SpectralInterval> intervals,
+                                                      const Observer& obs, double minNm, double maxNm, int bins) {
+  std::vector<std::array<double, 3>> weighted(size_t(bins), {0.0, 0.0, 0.0});
+  std::vector<double> mass(size_t(bins), 0.0);
+  const double binsPerNm = double(bins) / (maxNm - minNm);
+  auto binOf = [&](double lambda) {
+    return size_t(std::clamp(std::floor((lambda - minNm) * binsPerNm), 0.0, double(bins - 1)));
+  };
+  std::vector<uint64_t> lows;
+  for (const auto& iv : intervals) lows.push_back(iv.cdfLow);
+  for (size_t j = 0; j < intervals.size(); ++j) {
+    const auto& iv = intervals[j];
+    const double p = cdfProbability(lows, j);
+    const double lambda0 = iv.lambda0, width = iv.width, slope = iv.slope;
+    if (!(width > 0.0)) {  // a line
+      const size_t b = binOf(lambda0);
+      const auto c = cmfAt(obs, lambda0);
+      mass[b] += p;
+      for (int k = 0; k < 3; ++k) weighted[b][k] += p * c[k];
+      continue;
+    }
+    // Pieces between the interval's ends, bin edges and CMF nodes: on each
+    // the density and the CMF are linear, so Simpson's rule is exact.
+    std::vector<double> cuts{lambda0, lambda0 + width};
+    for (int e = 1; e < bins; ++e) cuts.push_back(minNm + double(e) / binsPerNm);
+    for (double node : obs.lambdaNm) cuts.push_back(node);
+    std::sort(cuts.begin(), cuts.end());
+    auto density = [&](double lambda) { return p / width * (1.0 - slope + 2.0 * slope * (lambda - lambda0) / width); };
+    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+      const double u = std::max(cuts[i], lambda0), v = std::min(cuts[i + 1], lambda0 + width);
+      if (!(u < v)) continue;
+      const double m = 0.5 * (u + v);
+      const size_t b = binOf(m);
+      const double du = density(u), dm = density(m), dv = density(v);
+      const auto cu = cmfAt(obs, u), cm = cmfAt(obs, m), cv = cmfAt(obs, v);
+      mass[b] += (v - u) / 6.0 * (du + 4.0 * dm + dv);
+      for (int k = 0; k < 3; ++k) weighted[b][k] += (v - u) / 6.0 * (du * cu[k] + 4.0 * dm * cm[k] + dv * cv[k]);
+    }
+  }
+  std::vector<std::array<double, 3>> means = binAveragedCmf(obs, minNm, maxNm, bins);
+  for (size_t b = 0; b < size_t(bins); ++b)
+    if (mass[b] > 0.0)
+      for (int k = 0; k < 3; ++k) means[b][k] = weighted[b][k] / mass[b];
+  return means;
 }
 
 std::array<double, 3> spdToXyz(const Spd& spd, const Observer& obs) {

@@ -1,11 +1,13 @@
 #pragma once
 // Colour science (the seed's Color::SPDtoRGB): CIE observers, XYZ, sRGB.
 #include <array>
+#include <span>
 #include <string_view>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 
+#include "device_shared.h"
 #include "spectrum/spd.h"
 
 namespace spectrace {
@@ -30,6 +32,16 @@ constexpr double kLumensPerWatt = 683.0;
 // w[b] = (1/Δλ) ∫_bin cmf(λ) dλ, integrated exactly (the CMF is piecewise
 // linear) in double. X = 683 · Σ_b E_b · w[b].x for per-bin irradiance E_b.
 std::vector<std::array<double, 3>> binAveragedCmf(const Observer& obs, double minNm, double maxNm, int bins);
+
+// The mean CMF of the wavelengths a light's spectral table draws, given that
+// they fall in bin b of `bins` equal bins over [minNm, maxNm]:
+// E[cmf(λ) | bin b] under the sampled density (each interval's exact
+// probability, linear inside it; a line at its wavelength), integrated
+// exactly in double. Bins the table never reaches get bin-averaged CMFs.
+// X = 683 · Σ_b E_b · w[b].x then has the expectation of per-beam exact
+// colour for beams of this table (the colour-from-bins shortcut).
+std::vector<std::array<double, 3>> sampledBinCmfMeans(std::span<const device::SpectralInterval> intervals,
+                                                      const Observer& obs, double minNm, double maxNm, int bins);
 
 // Tristimulus values of an SPD by exact integration of the product of the
 // two piecewise-linear functions (a line: the CMF at its wavelength), in

@@ -12,6 +12,7 @@
 #include "film/pixel_window.h"
 #include "kernel/beam_kernel.h"
 #include "lights/light_shared.h"
+#include "spectrum/alias_table.h"
 #include "spectrum/wavelength_sampler.h"
 
 namespace spectrace {
@@ -187,7 +188,7 @@ void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
 // monotonically in t.
 void trimSpectrum(const DeviceScene& device, FilmLayout& film) {
   const device::TraceConstants& c = device.constants;
-  device::BeamKernel kernel(c, device.lights, device.intervals);
+  device::BeamKernel kernel(c, device.lights, device.intervals, device.aliasColumns);
   uint32_t first = film.bins, last = 0;
   for (const auto& iv : device.intervals) {
     const float lowest = iv.lambda0 + iv.width * 0.0f;
@@ -197,6 +198,38 @@ void trimSpectrum(const DeviceScene& device, FilmLayout& film) {
   }
   film.firstStoredBin = first;
   film.storedBins = last - first + 1;
+}
+
+// The alias columns the kernel draws through (host/spectrum/alias_table.h):
+// the light choice's from column 0, then each light's spectral table's,
+// each built from the integer CDF it replaces.
+void buildAliasColumns(DeviceScene& device) {
+  std::vector<uint64_t> lows;
+  for (const auto& light : device.lights) lows.push_back(light.selectCdfLow);
+  AliasTable table = buildAliasTable(lows);
+  device.constants.lightAliasBits = table.bits;
+  device.aliasColumns = std::move(table.columns);
+  for (auto& light : device.lights) {
+    lows.clear();
+    for (uint32_t i = 0; i < light.spectralCount; ++i) lows.push_back(device.intervals[light.spectralFirst + i].cdfLow);
+    table = buildAliasTable(lows);
+    light.spectralAliasFirst = uint32_t(device.aliasColumns.size());
+    light.spectralAliasBits = table.bits;
+    device.aliasColumns.insert(device.aliasColumns.end(), table.columns.begin(), table.columns.end());
+  }
+}
+
+// Colour-from-bins pass: no per-beam colour counters; the film's colour is
+// developed from its bins with the shared table's mean CMF per bin.
+void developColourFromBins(const Scene& scene, CompiledScene& compiled) {
+  const DeviceScene& device = compiled.device;
+  const auto& light = device.lights.front();
+  const std::span<const device::SpectralInterval> table(device.intervals.data() + light.spectralFirst,
+                                                        light.spectralCount);
+  compiled.colourBinMeans = sampledBinCmfMeans(table, observerByName(scene.observer), compiled.film.lambdaMinNm,
+                                               compiled.film.lambdaMaxNm, int(compiled.film.bins));
+  compiled.film.exactColour = false;
+  compiled.film.colourFromBins = true;
 }
 
 // The kernel's copy of the film's shape.
@@ -236,10 +269,14 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   checkImageRange(scene, compiled);
   const auto lows = quantizeCdf(selectWeights);
   for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
+  buildAliasColumns(compiled.device);
   cameraConstants(scene, seed, compiled.device);
   if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);
   if (shortcutApplies(Shortcut::TrimPixels, options.trimPixels, scene))
     compiled.film.window = reachablePixelWindow(scene.camera, reaches);
+  if (compiled.film.exactColour && shortcutApplies(Shortcut::ColourFromBins, options.colourFromBins, scene) &&
+      sharedSpectralTableMissingBecause(compiled.device.lights, compiled.device.intervals).empty())
+    developColourFromBins(scene, compiled);
   filmConstants(compiled.film, compiled.device.constants);
   return compiled;
 }

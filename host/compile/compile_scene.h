@@ -23,6 +23,7 @@ struct DeviceScene {
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights;          // traced lights, with the selection CDF
   std::vector<device::SpectralInterval> intervals;  // every traced light's spectral table
+  std::vector<device::AliasColumn> aliasColumns;    // the light choice's, then each light's table's
   std::vector<glm::vec3> cmfTable;                  // the observer's CMF nodes, for exact colour
 };
 
@@ -50,6 +51,10 @@ struct CompiledScene {
   // without aiming).
   double tracedPowerW = 0.0;
   double sampledPowerW = 0.0;
+  // With the colour-from-bins shortcut (film.colourFromBins): per bin of
+  // the full spectrum, the mean CMF of the wavelengths drawn in it
+  // (sampledBinCmfMeans), which develops colour in place of per-beam sums.
+  std::vector<std::array<double, 3>> colourBinMeans;
 
   // W/m^2 per bin carried by one count when `beams` beams were traced: a
   // full-weight beam carries sampledPowerW * exposure / beams joules, spread
@@ -66,6 +71,9 @@ struct CompileOptions {
   // Accumulate each counted beam's own CMF values per pixel (exact colour
   // whatever the bin count); otherwise colour comes from bin-averaged CMFs.
   bool exactColour = true;
+  // Exact colour from the bins where compile/shortcuts.h allows it (no
+  // per-beam colour counters); off: per-beam CMF sums.
+  bool colourFromBins = true;
   // Never sample lights that provably cannot reach the sensor.
   bool skipUnreachableLights = true;
   // Store only the wavelength bins the traced lights can reach.

@@ -39,7 +39,12 @@ TEST(AimedPlan, PointLightSamplesTheConeOfThePinhole) {
   EXPECT_GT(plan.summaries[0].largestWeight, exact) << "the sampled cone must hold the whole pinhole";
   EXPECT_NEAR(plan.sampledPowerW, plan.tracedPowerW * plan.summaries[0].largestWeight, 1e-15);
   EXPECT_FALSE(plan.film.weighted()) << "point-light weights are all 1: plain hit counts";
-  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u);
+  // One light: exact colour comes from the bins, with no colour counters.
+  EXPECT_TRUE(plan.film.colourFromBins);
+  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins);
+  CompileOptions perBeam;
+  perBeam.colourFromBins = false;
+  EXPECT_EQ(compileScene(scene, 1, perBeam).film.countersPerPixel(), plan.film.storedBins + 3u);
 }
 
 TEST(AimedPlan, LightChoiceFollowsPowerTimesLargestWeight) {
@@ -89,7 +94,10 @@ TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
   EXPECT_EQ(plan.device.lights[0].aimed, 1u);
   EXPECT_TRUE(plan.film.weighted());
   EXPECT_EQ(plan.device.constants.weightUnits, device::kWeightUnitsFractional);
-  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u + 1u);
+  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 1u);  // colour from the bins
+  CompileOptions perBeam;
+  perBeam.colourFromBins = false;
+  EXPECT_EQ(compileScene(scene, 1, perBeam).film.countersPerPixel(), plan.film.storedBins + 3u + 1u);
   const double exact = 2.0 * oneMinusCos(0.0005);
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
   EXPECT_NEAR(double(plan.device.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
@@ -142,7 +150,7 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
       continue;  // the light cannot reach the sensor
     }
     windowed += plan.film.storedPixelCount() < plan.film.pixelCount();
-    device::BeamKernel kernel(plan.device.constants, plan.device.lights, plan.device.intervals);
+    device::BeamKernel kernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns);
     const auto& c = plan.device.constants;
     int outside = 0;
     for (uint64_t i = 0; i < 20'000; ++i) {

@@ -8,6 +8,7 @@ const char* shortcutName(Shortcut shortcut) {
     case Shortcut::AimAtCamera: return "aim at the camera";
     case Shortcut::TrimSpectrum: return "trim the spectrum";
     case Shortcut::TrimPixels: return "trim the sensor";
+    case Shortcut::ColourFromBins: return "colour from bins";
   }
   return "?";
 }
@@ -30,6 +31,11 @@ const char* shortcutPrecondition(Shortcut shortcut) {
     case Shortcut::TrimPixels:
       return "beams travel straight from the light to the camera, so they land inside the lights' image through "
              "the pinhole (or a laser's footprint)";
+    case Shortcut::ColourFromBins:
+      return "a beam's wavelength is drawn independently of where it lands and keeps it, and every traced light "
+             "draws from one spectral table, so given its bin a counted beam's wavelength has the table's "
+             "distribution inside that bin, and a bin's count times that distribution's mean CMF has the "
+             "expectation of the beams' own CMF sums";
   }
   return "";
 }
@@ -42,6 +48,22 @@ std::string shortcutBlockedBecause(Shortcut /*shortcut*/, const Scene& /*scene*/
 
 bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene) {
   return requested && shortcutBlockedBecause(shortcut, scene).empty();
+}
+
+std::string sharedSpectralTableMissingBecause(std::span<const device::LightRecord> lights,
+                                              std::span<const device::SpectralInterval> intervals) {
+  auto same = [](const device::SpectralInterval& a, const device::SpectralInterval& b) {
+    return a.cdfLow == b.cdfLow && a.lambda0 == b.lambda0 && a.width == b.width && a.slope == b.slope;
+  };
+  for (size_t l = 1; l < lights.size(); ++l) {
+    const auto& first = lights[0];
+    const auto& light = lights[l];
+    bool equal = light.spectralCount == first.spectralCount;
+    for (uint32_t i = 0; equal && i < first.spectralCount; ++i)
+      equal = same(intervals[first.spectralFirst + i], intervals[light.spectralFirst + i]);
+    if (!equal) return "the traced lights draw from different spectral tables";
+  }
+  return "";
 }
 
 }  // namespace spectrace

@@ -4,7 +4,10 @@
 // unshortened reference path) and a test against that path. A pass asks
 // shortcutApplies() before it acts, so a scene that breaks a precondition
 // gets the unshortened path whatever the options say.
+#include <span>
 #include <string>
+
+#include "device_shared.h"
 
 #include "scene/scene.h"
 
@@ -20,6 +23,9 @@ enum class Shortcut {
   TrimSpectrum,
   // The film stores only the rectangle of pixels beams can reach.
   TrimPixels,
+  // Exact colour without per-beam colour counters: each bin's count times
+  // the mean CMF of the wavelengths the lights' table draws in that bin.
+  ColourFromBins,
 };
 
 const char* shortcutName(Shortcut shortcut);
@@ -29,5 +35,10 @@ const char* shortcutPrecondition(Shortcut shortcut);
 std::string shortcutBlockedBecause(Shortcut shortcut, const Scene& scene);
 // Whether a pass may take the shortcut: asked for, and valid for the scene.
 bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene);
+
+// ColourFromBins also needs every traced light to draw its wavelengths from
+// one and the same spectral table: why not, or "" when they do.
+std::string sharedSpectralTableMissingBecause(std::span<const device::LightRecord> lights,
+                                              std::span<const device::SpectralInterval> intervals);
 
 }  // namespace spectrace

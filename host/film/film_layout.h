@@ -28,6 +28,7 @@ struct FilmLayout {
   PixelWindow window;
   uint32_t firstStoredBin = 0, storedBins = 0;
   bool exactColour = true;    // per-beam CMF sums per pixel
+  bool colourFromBins = false;  // exact colour from bin counts instead (compile/shortcuts.h)
   uint32_t weightUnits = 1;   // what a full-weight beam adds to its bin (1 or kWeightUnitsFractional)
 
   bool weighted() const { return weightUnits != 1; }

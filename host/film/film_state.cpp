@@ -42,6 +42,7 @@ json toJson(const FilmFingerprint& f) {
           {"first_stored_bin", f.firstStoredBin},
           {"stored_bins", f.storedBins},
           {"exact_colour", f.exactColour},
+          {"colour_from_bins", f.colourFromBins},
           {"weight_units", f.weightUnits},
           {"seed", f.seed},
           {"specialisation", f.specialisation},
@@ -66,6 +67,7 @@ FilmFingerprint fingerprintFromJson(const json& j) {
   f.firstStoredBin = j.at("first_stored_bin").get<uint32_t>();
   f.storedBins = j.at("stored_bins").get<uint32_t>();
   f.exactColour = j.at("exact_colour").get<bool>();
+  f.colourFromBins = j.value("colour_from_bins", false);
   f.weightUnits = j.at("weight_units").get<uint32_t>();
   f.seed = j.at("seed").get<uint64_t>();
   f.specialisation = j.at("specialisation").get<uint32_t>();
@@ -125,6 +127,7 @@ FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFi
   f.firstStoredBin = film.firstStoredBin;
   f.storedBins = film.storedBins;
   f.exactColour = film.exactColour;
+  f.colourFromBins = film.colourFromBins;
   f.weightUnits = film.weightUnits;
   f.seed = seed;
   f.specialisation = specialisation;

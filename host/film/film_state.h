@@ -38,6 +38,7 @@ struct FilmFingerprint {
   PixelWindow window;
   uint32_t firstStoredBin = 0, storedBins = 0;
   bool exactColour = true;
+  bool colourFromBins = false;  // exact colour developed from the bins (FilmLayout)
   uint32_t weightUnits = 1;
   uint64_t seed = 0;
   uint32_t specialisation = 0;  // SpecialisedFeature bits of the trace pipeline

@@ -24,10 +24,10 @@ class BeamKernel {
   // (constants.pixelsPerChunk must cover them), which countBeam adds to
   // with relaxed atomics; empty when the kernel only traces.
   BeamKernel(const TraceConstants& traceConstants, std::span<const LightRecord> lightRecords,
-             std::span<const SpectralInterval> spectralIntervals, std::span<const glm::vec3> cmfNodes = {},
-             std::span<uint64_t> filmCounters = {})
-      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), cmf(cmfNodes),
-        counters(filmCounters) {}
+             std::span<const SpectralInterval> spectralIntervals, std::span<const AliasColumn> aliasTables,
+             std::span<const glm::vec3> cmfNodes = {}, std::span<uint64_t> filmCounters = {})
+      : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), aliasColumns(aliasTables),
+        cmf(cmfNodes), counters(filmCounters) {}
 
   // Whether beam `index` is counted, its pixel and (stored) bin, and what
   // it adds to the bin (weightUnits x its weight ratio). (The shared
@@ -47,8 +47,7 @@ class BeamKernel {
     const auto w = spectrace::philoxWords(seed, index, block);
     return uvec4(w[0], w[1], w[2], w[3]);
   }
-  uint64_t readLightCdf(uint i) const { return lights[i].selectCdfLow; }
-  uint64_t readSpectralCdf(uint i) const { return intervals[i].cdfLow; }
+  AliasColumn readAliasColumn(uint i) const { return aliasColumns[i]; }
   LightRecord readLight(uint i) const { return lights[i]; }
   SpectralInterval readInterval(uint i) const { return intervals[i]; }
   vec3 readCmf(uint i) const { return cmf[i]; }
@@ -61,6 +60,7 @@ class BeamKernel {
   TraceConstants constants;
   std::span<const LightRecord> lights;
   std::span<const SpectralInterval> intervals;
+  std::span<const AliasColumn> aliasColumns;
   std::span<const glm::vec3> cmf;
   std::span<uint64_t> counters;
 

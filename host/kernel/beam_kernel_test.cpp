@@ -12,6 +12,7 @@
 
 #include "rng/philox.h"
 #include "spectrum/spd.h"
+#include "spectrum/alias_table.h"
 #include "spectrum/wavelength_sampler.h"
 #include "support/statistics.h"
 
@@ -23,16 +24,23 @@ using device::BeamKernel;
 // A kernel over one light's spectral table; only the spectral part is used.
 struct SamplerFixture {
   SpectralTable table;
+  AliasTable alias;
   device::TraceConstants constants{};
   std::vector<device::LightRecord> lights{1};
   mutable BeamKernel kernel;  // the shared functions are not const-qualified
   explicit SamplerFixture(const Spd& spd)
-      : table(buildSpectralTable(spd)), kernel(constants, lights, table.intervals) {
+      : table(buildSpectralTable(spd)), alias(aliasOf(table)), kernel(constants, lights, table.intervals, alias.columns) {
     lights[0].spectralCount = uint32_t(table.intervals.size());
+    lights[0].spectralAliasBits = alias.bits;
+  }
+  static AliasTable aliasOf(const SpectralTable& table) {
+    std::vector<uint64_t> lows;
+    for (const auto& iv : table.intervals) lows.push_back(iv.cdfLow);
+    return buildAliasTable(lows);
   }
   float draw(uint64_t seed, uint64_t i) const {
     const auto w = philoxWords(seed, i, device::kRngBlockSpectral);
-    return kernel.drawWavelength(0, uint32_t(table.intervals.size()), joinWords(w[0], w[1]), uniformFloat(w[2]));
+    return kernel.drawWavelength(lights[0], joinWords(w[0], w[1]), uniformFloat(w[2]));
   }
 };
 
@@ -117,24 +125,23 @@ TEST(IntegerCdf, ZeroWeightsNeverDrawnPositiveAlwaysDrawable) {
   }
   // Widths sum to exactly 2^64: every 64-bit uniform selects some entry.
   EXPECT_TRUE(sum == (unsigned __int128)1 << 64);
-  // The search never lands on a zero-width entry, even at every boundary.
-  SamplerFixture dummy(makeLineSpd(500.0));
+  // The alias table the kernel draws through gives each entry exactly its
+  // width, and its lookup never lands on a zero-width entry, at either end
+  // of any column.
+  const AliasTable alias = buildAliasTable(lows);
+  const auto masses = aliasMasses(alias, alias.columns.size());
+  for (size_t j = 0; j < masses.size(); ++j) {
+    const unsigned __int128 high = j + 1 < lows.size() ? lows[j + 1] : (unsigned __int128)1 << 64;
+    EXPECT_TRUE(masses[j] == (j < lows.size() ? high - lows[j] : 0)) << j;
+  }
   std::vector<device::SpectralInterval> intervals(weights.size());
-  for (size_t j = 0; j < weights.size(); ++j) intervals[j].cdfLow = lows[j];
   device::TraceConstants c{};
   std::vector<device::LightRecord> l(1);
-  BeamKernel k(c, l, intervals);
-  for (size_t j = 0; j < weights.size(); ++j) {
-    for (uint64_t u : {lows[j], lows[j] - 1, lows[j] + 1, ~uint64_t(0), uint64_t(0)}) {
-      const uint32_t found = k.searchSpectralInterval(0, uint32_t(weights.size()), u);
-      EXPECT_GT(weights[found], 0.0) << "u=" << u;
-      const uint64_t high = found + 1 < lows.size() ? lows[found + 1] : 0;
-      EXPECT_GE(u, lows[found]);
-      if (high != 0) {
-        EXPECT_LT(u, high);
-      }
-    }
-  }
+  BeamKernel k(c, l, intervals, alias.columns);
+  const unsigned __int128 columnWidth = (unsigned __int128)1 << (64 - alias.bits);
+  for (uint32_t col = 0; col < alias.columns.size(); ++col)
+    for (unsigned __int128 u : {col * columnWidth, (col + 1) * columnWidth - 1})
+      EXPECT_GT(weights[k.aliasLookup(0, alias.bits, uint64_t(u))], 0.0) << "column " << col;
 }
 
 TEST(IntegerCdf, SharesAreExactToTheWidthRounding) {

@@ -11,7 +11,9 @@ namespace spectrace {
 ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams) {
   ResolveParameters parameters;
   const Observer& observer = observerByName(scene.observer);
-  parameters.binWeights = binAveragedCmf(observer, plan.film.lambdaMinNm, plan.film.lambdaMaxNm, int(plan.film.bins));
+  parameters.binWeights = plan.film.colourFromBins
+                              ? plan.colourBinMeans
+                              : binAveragedCmf(observer, plan.film.lambdaMinNm, plan.film.lambdaMaxNm, int(plan.film.bins));
   for (auto& w : parameters.binWeights)
     for (double& v : w) v *= kLumensPerWatt;
   parameters.xyzToRgb = xyzToLinearSrgb();

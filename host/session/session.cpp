@@ -223,7 +223,8 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   job.beams = state.beams();
   job.options.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
   job.options.specialisedFeatures = f.specialisation;
-  job.options.plan = CompileOptions{f.exactColour, f.skipUnreachableLights, f.trimSpectrum, f.trimPixels, f.aimed};
+  job.options.plan = CompileOptions{f.exactColour || f.colourFromBins, f.colourFromBins, f.skipUnreachableLights,
+                                    f.trimSpectrum, f.trimPixels, f.aimed};
   if (std::string field = fingerprintDifference(f, jobFingerprint(job)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);

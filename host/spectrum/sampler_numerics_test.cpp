@@ -5,7 +5,8 @@
 // clipping and every CIE table; why a float32 CDF would not do; the
 // endpoints of the closed-form position sampler; and light selection over
 // powers spanning 18 decades (exact pmf and a chi-square of the kernel's
-// search).
+// draws). The kernel draws through alias tables built from the integer
+// CDFs; each table is checked to give every entry exactly its CDF width.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "kernel/beam_kernel.h"
 #include "rng/philox.h"
+#include "spectrum/alias_table.h"
 #include "spectrum/cie_data.h"
 #include "spectrum/spd.h"
 #include "spectrum/wavelength_sampler.h"
@@ -53,6 +55,36 @@ std::vector<RefInterval> referenceIntervals(const Spd& spd, double lo, double hi
     out.push_back({a, b, 0.5L * (fa + fb) * ((long double)b - (long double)a)});
   }
   return out;
+}
+
+u128 highOf(const std::vector<uint64_t>& lows, size_t k);
+
+// The kernel draws entry k of an integer CDF, through the alias table built
+// from it, for exactly width_k of the 2^64 uniforms: the table's masses
+// equal the widths (so zero widths are never drawn and positive ones always
+// can be), and the kernel's aliasLookup follows the rule those masses were
+// counted by, at both ends of every column and on both sides of its
+// threshold.
+AliasTable expectAliasDrawsExactly(const std::vector<uint64_t>& lows, const std::string& label) {
+  const AliasTable table = buildAliasTable(lows);
+  const auto masses = aliasMasses(table, table.columns.size());
+  for (size_t k = 0; k < masses.size(); ++k)  // entries past the CDF's (padding) get nothing
+    EXPECT_TRUE(masses[k] == (k < lows.size() ? highOf(lows, k) - lows[k] : 0)) << label << ": entry " << k;
+  device::TraceConstants c{};
+  std::vector<device::LightRecord> l(1);
+  std::vector<device::SpectralInterval> iv(1);
+  BeamKernel kernel(c, l, iv, table.columns);
+  const u128 capacity = u128(1) << (64 - table.bits);
+  for (uint32_t col = 0; col < table.columns.size(); ++col) {
+    const auto& column = table.columns[col];
+    const u128 primary = std::min(capacity, (u128(column.threshold) + (u128(1) << table.bits) - 1) >> table.bits);
+    const u128 base = u128(col) << (64 - table.bits);
+    for (u128 r : {u128(0), capacity - 1, primary > 0 ? primary - 1 : u128(0), primary < capacity ? primary : capacity - 1}) {
+      const uint32_t expected = r < primary ? col : column.alias;
+      EXPECT_EQ(kernel.aliasLookup(0, table.bits, uint64_t(base + r)), expected) << label << ": column " << col;
+    }
+  }
+  return table;
 }
 
 std::vector<uint64_t> lowsOf(const SpectralTable& table) {
@@ -157,18 +189,8 @@ ExactnessStats expectSamplerExact(const Spd& spd, const std::string& label, bool
   // Widths partition 2^64 exactly: every 64-bit uniform selects an interval.
   EXPECT_TRUE(sum == u128(1) << 64) << label;
 
-  // The shader's search returns interval k for the first and the last
-  // uniform of its range (so the exact widths above are what it draws).
-  device::TraceConstants constants{};
-  std::vector<device::LightRecord> lights(1);
-  BeamKernel kernel(constants, lights, iv);
-  const uint32_t n = uint32_t(iv.size());
-  for (size_t k = 0; k < iv.size(); ++k) {
-    const u128 high = highOf(lows, k);
-    if (high == lows[k]) continue;
-    EXPECT_EQ(kernel.searchSpectralInterval(0, n, lows[k]), k) << label;
-    EXPECT_EQ(kernel.searchSpectralInterval(0, n, uint64_t(high - 1)), k) << label;
-  }
+  // The kernel draws exactly these widths.
+  expectAliasDrawsExactly(lows, label);
   std::printf("[ numerics ] %-28s %7zu intervals: %zu checked (share >= %.3g), worst rel. error %.3g; "
               "%zu tiny > 0, %zu zero\n",
               label.c_str(), iv.size(), stats.checked, stats.smallestChecked, stats.worstRelative,
@@ -372,7 +394,7 @@ TEST(SamplerEndpoints, RngUniformRange) {
   device::TraceConstants c{};
   std::vector<device::LightRecord> l(1);
   std::vector<device::SpectralInterval> iv(1);
-  BeamKernel k(c, l, iv);
+  BeamKernel k(c, l, iv, {});
   EXPECT_EQ(k.uniformFromWord(0xFFFFFFFFu), kMaxUniform);
   EXPECT_EQ(k.uniformFromWord(0u), 0.0f);
 }
@@ -381,7 +403,7 @@ TEST(SamplerEndpoints, LinearSamplerAtBothEndsOfTheUniformRange) {
   device::TraceConstants c{};
   std::vector<device::LightRecord> l(1);
   std::vector<device::SpectralInterval> iv(1);
-  BeamKernel k(c, l, iv);
+  BeamKernel k(c, l, iv, {});
   const float slopes[] = {-1.0f, -1.0f + 1e-7f, -0.5f, 0.0f, 0.5f, 1.0f - 1e-7f, 1.0f};
   double worst = 0.0, worstRelT = 0.0;
   for (float slope : slopes) {
@@ -434,16 +456,18 @@ TEST(SamplerEndpoints, DrawWavelengthStaysInsideEachIntervalAndTheSupport) {
   EXPECT_TRUE(sawSteep) << "the table should contain slopes within 1e-6 of +-1";
 
   device::TraceConstants c{};
+  const AliasTable alias = expectAliasDrawsExactly(lows, "steep slopes");
   std::vector<device::LightRecord> l(1);
-  BeamKernel k(c, l, iv);
-  const uint32_t n = uint32_t(iv.size());
+  l[0].spectralCount = uint32_t(iv.size());
+  l[0].spectralAliasBits = alias.bits;
+  BeamKernel k(c, l, iv, alias.columns);
   const float supportLo = iv.front().lambda0, supportHi = iv.back().lambda0 + iv.back().width;
   EXPECT_EQ(supportLo, 400.0f);
   EXPECT_EQ(supportHi, 620.0f);
 
   auto check = [&](uint64_t interval, float u, int64_t expectIndex) {
-    const uint32_t found = k.searchSpectralInterval(0, n, interval);
-    const float lambda = k.drawWavelength(0, n, interval, u);
+    const uint32_t found = k.aliasLookup(0, alias.bits, interval);
+    const float lambda = k.drawWavelength(l[0], interval, u);
     ASSERT_FALSE(std::isnan(lambda)) << interval << " " << u;
     ASSERT_GE(lambda, supportLo) << interval << " " << u;
     ASSERT_LE(lambda, supportHi) << interval << " " << u;
@@ -460,20 +484,23 @@ TEST(SamplerEndpoints, DrawWavelengthStaysInsideEachIntervalAndTheSupport) {
   };
   for (uint64_t interval : {uint64_t(0), ~uint64_t(0)})
     for (float u : {0.0f, kMaxUniform}) check(interval, u, -1);
-  // Both ends of every drawable interval's 64-bit range, both position ends.
-  for (size_t j = 0; j < iv.size(); ++j) {
-    const u128 high = highOf(lows, j);
-    if (high == lows[j]) continue;
-    for (uint64_t interval : {lows[j], uint64_t(high - 1)})
-      for (float u : {0.0f, kMaxUniform}) check(interval, u, int64_t(j));
+  // Both ends of every alias column's 64-bit range, both position ends.
+  for (uint32_t col = 0; col < alias.columns.size(); ++col) {
+    const u128 base = u128(col) << (64 - alias.bits);
+    for (u128 interval : {base, base + (u128(1) << (64 - alias.bits)) - 1})
+      for (float u : {0.0f, kMaxUniform}) check(uint64_t(interval), u, -1);
   }
   // And a 0.01 nm line in a 1 nm table: the line's samples stay within it.
   const Spd narrow = makeTabulatedSpd({549.0, 549.99, 550.0, 550.01, 551.0}, {0.0, 0.0, 1e9, 0.0, 0.0});
   const SpectralTable nt = buildSpectralTable(narrow);
-  BeamKernel nk(c, l, nt.intervals);
+  const AliasTable narrowAlias = expectAliasDrawsExactly(lowsOf(nt), "narrow line");
+  std::vector<device::LightRecord> nl(1);
+  nl[0].spectralCount = uint32_t(nt.intervals.size());
+  nl[0].spectralAliasBits = narrowAlias.bits;
+  BeamKernel nk(c, nl, nt.intervals, narrowAlias.columns);
   for (uint64_t interval : {uint64_t(0), uint64_t(1) << 63, ~uint64_t(0)})
     for (float u : {0.0f, 0.5f, kMaxUniform}) {
-      const float lambda = nk.drawWavelength(0, uint32_t(nt.intervals.size()), interval, u);
+      const float lambda = nk.drawWavelength(nl[0], interval, u);
       ASSERT_GE(lambda, float(549.99));
       ASSERT_LE(lambda, float(550.01));
     }
@@ -504,23 +531,19 @@ void expectLightSelectionExact(const std::vector<double>& powers, const std::str
     EXPECT_LE(rel, quantisationBound(share, j == widest ? n : 0)) << label << ": light " << j << " share " << share;
   }
 
+  // The kernel draws exactly these shares through the alias table.
+  const AliasTable alias = expectAliasDrawsExactly(lows, label);
   std::vector<device::LightRecord> lights(n);
-  for (size_t j = 0; j < n; ++j) lights[j].selectCdfLow = lows[j];
   device::TraceConstants c{};
   std::vector<device::SpectralInterval> iv(1);
-  BeamKernel k(c, lights, iv);
-  // Exact boundaries: the first and last uniform of each light's range.
-  for (size_t j = 0; j < n; ++j) {
-    ASSERT_EQ(k.searchLight(0, uint32_t(n), lows[j]), j) << label;
-    ASSERT_EQ(k.searchLight(0, uint32_t(n), uint64_t(highOf(lows, j) - 1)), j) << label;
-  }
+  BeamKernel k(c, lights, iv, alias.columns);
   // Chi-square of the kernel's draws against the exact pmf; p > 0.01 with a
   // fixed seed (deterministic; a correct sampler fails 1% of seeds).
   constexpr uint64_t kDraws = 2'000'000;
   std::vector<uint64_t> counts(n, 0);
   for (uint64_t i = 0; i < kDraws; ++i) {
     const auto w = philoxWords(seed, i, 0);
-    ++counts[k.searchLight(0, uint32_t(n), joinWords(w[0], w[1]))];
+    ++counts[k.aliasLookup(0, alias.bits, joinWords(w[0], w[1]))];
   }
   const auto result = testing::chiSquareTest(counts, pmf);
   EXPECT_FALSE(result.impossibleHit) << label;

@@ -36,7 +36,7 @@ inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) 
 inline BeamAgreement beamByBeam(const CompiledScene& plan, uint64_t firstBeam, uint32_t count, const std::string& name) {
   VulkanTracer gpu(sharedVulkan(), plan);
   const auto records = gpu.traceRecorded(firstBeam, count);
-  device::BeamKernel cpu(plan.device.constants, plan.device.lights, plan.device.intervals);
+  device::BeamKernel cpu(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns);
   BeamAgreement result;
   for (uint32_t i = 0; i < count; ++i) {
     const device::BeamRecord expected = cpuRecord(cpu, firstBeam + i);
