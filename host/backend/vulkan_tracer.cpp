@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "embedded_shaders.h"
+#include "json/scene_error.h"
 #include "scene/scene_limits.h"
 
 namespace spectrace {
@@ -103,14 +104,44 @@ HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPi
   return split;
 }
 
+void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRange, uint64_t deviceLocalHeapBytes,
+                          const std::string& deviceName) {
+  const uint64_t tableBytes = plan.device.intervals.size() * sizeof(device::SpectralInterval);
+  if (tableBytes > maxStorageBufferRange) {
+    // Name the light with the largest table: the field to make coarser.
+    size_t largest = 0;
+    for (size_t i = 1; i < plan.device.lights.size(); ++i)
+      if (plan.device.lights[i].spectralCount > plan.device.lights[largest].spectralCount) largest = i;
+    std::string label = "/lights";
+    size_t traced = 0;
+    for (const LightSummary& s : plan.summaries)
+      if (s.traced && traced++ == largest) label = s.label;
+    throw SceneError(fmt::format(
+        "/lights/*/spd: the spectral tables need {} bytes on the device ({} intervals; the largest, {}, has {}), more "
+        "than the {} bytes of one storage buffer (maxStorageBufferRange of {}); use fewer table rows or lights, or "
+        "--device cpu",
+        tableBytes, plan.device.intervals.size(), label, plan.device.lights[largest].spectralCount,
+        maxStorageBufferRange, deviceName));
+  }
+  const uint64_t filmBytes = plan.film.storedCounterCount() * sizeof(uint64_t);
+  if (deviceLocalHeapBytes > 0 && filmBytes > deviceLocalHeapBytes)
+    throw SceneError(fmt::format(
+        "/camera/sensor/pixels: the film ({}x{} pixels, {} counters each) needs {} bytes of device memory, more than "
+        "the {} bytes of {}; use fewer pixels or bins",
+        plan.film.window.width, plan.film.window.height, plan.film.countersPerPixel(), filmBytes, deviceLocalHeapBytes,
+        deviceName));
+}
+
 VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize,
                            uint32_t specialisedFeatures)
     : context_(context),
       plan_(plan),
       workgroupSize_(workgroupSize),
       traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures)),
-      split_(HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
-                                       context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize)),
+      split_((checkSceneFitsDevice(plan, context.info().maxStorageBufferRange, context.info().deviceLocalHeapBytes,
+                                   context.info().name),
+              HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
+                                        context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize))),
       traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
       lights_(uploadedBuffer(context, plan.device.lights)),
       intervals_(uploadedBuffer(context, plan.device.intervals)),

@@ -3,6 +3,7 @@
 // pass (counters -> XYZ/RGB/irradiance), both on one device.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "backend/tracer.h"
@@ -27,6 +28,14 @@ struct HistogramSplit {
   static HistogramSplit forDevice(uint64_t pixels, uint32_t countersPerPixel, uint64_t maxStorageBufferRange,
                                   uint64_t maxAllocation);
 };
+
+// Refuses, before anything is uploaded, a scene whose tables do not fit the
+// device: the lights' spectral tables (one storage buffer) beyond
+// `maxStorageBufferRange`, or the film beyond `deviceLocalHeapBytes` (both
+// queried from the device, never assumed). Throws SceneError naming the
+// scene field, the bytes needed and the limit.
+void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRange, uint64_t deviceLocalHeapBytes,
+                          const std::string& deviceName);
 
 // The resolve pass's constants and the weights of the stored bins.
 device::ResolveConstants resolveConstants(const CompiledScene& plan, const ResolveParameters& parameters,

@@ -11,6 +11,8 @@
 #include <openssl/evp.h>
 
 #include "io/atomic_file.h"
+#include "json/input_file.h"
+#include "json/json_fields.h"
 
 namespace spectrace {
 namespace {
@@ -173,9 +175,15 @@ FilmState readFilmState(const std::filesystem::path& file) {
   auto fail = [&](const std::string& what) -> FilmStateError {
     return FilmStateError(fmt::format("{}: {}", file.string(), what));
   };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw fail("cannot open the state file");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  try {
+    // A state holds the whole film, so no size bound but the film's; a
+    // device node or pipe is still refused before it is read.
+    text = readInputFile(file, "state file", UINT64_MAX);
+  } catch (const InputFileError& e) {
+    throw FilmStateError(e.what());
+  }
+  const std::basic_string_view<unsigned char> bytes(reinterpret_cast<const unsigned char*>(text.data()), text.size());
   if (bytes.size() < kPrefixBytes + kDigestBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
     throw fail("not a spectrace state file (no SPCTRSTA magic)");
   const size_t body = bytes.size() - kDigestBytes;
@@ -188,7 +196,12 @@ FilmState readFilmState(const std::filesystem::path& file) {
   FilmState state;
   size_t offset = kPrefixBytes + prefix[1];
   try {
-    const json header = json::parse(bytes.begin() + kPrefixBytes, bytes.begin() + long(offset));
+    // The header is a few fields deep; a deeper one is not ours (and would cost memory).
+    const json header = json::parse(bytes.begin() + kPrefixBytes, bytes.begin() + long(offset),
+                                    [&fail](int depth, json::parse_event_t, json&) {
+                                      if (depth > json_fields::kMaxJsonDepth) throw fail("bad header: it nests too deep");
+                                      return true;
+                                    });
     state.fingerprint = fingerprintFromJson(header.at("fingerprint"));
     for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
     const FilmFingerprint& f = state.fingerprint;

@@ -116,6 +116,10 @@ struct DuplicateKey {
   std::string key;
 };
 
+struct TooDeep {
+  std::string ptr;
+};
+
 }  // namespace
 
 Json parseJson(const Source& c, const std::string& text) {
@@ -133,6 +137,9 @@ Json parseJson(const Source& c, const std::string& text) {
       Frame& parent = stack.back();
       ptr = parent.isArray ? child(parent.ptr, parent.next++) : child(parent.ptr, parent.key);
     }
+    // Checked here, as the level opens: each frame holds its pointer, so
+    // unbounded depth would cost memory quadratic in the depth.
+    if (stack.size() >= size_t(kMaxJsonDepth)) throw TooDeep{std::move(ptr)};
     stack.push_back(Frame{isArray, 0, std::move(ptr), {}, {}});
   };
   Json::parser_callback_t callback = [&](int, Json::parse_event_t event, Json& parsed) {
@@ -161,6 +168,9 @@ Json parseJson(const Source& c, const std::string& text) {
     return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const DuplicateKey& d) {
     c.fail(d.ptr, fmt::format("duplicate key {} (each key may appear only once per object)", jsonQuoted(d.key)));
+  } catch (const TooDeep& d) {
+    c.fail(d.ptr.size() > 80 ? d.ptr.substr(0, 80) + "..." : d.ptr,
+           fmt::format("arrays and objects nest more than {} levels deep, the most spectrace reads", kMaxJsonDepth));
   } catch (const Json::parse_error& e) {
     std::string what = e.what();
     if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);

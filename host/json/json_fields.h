@@ -54,9 +54,13 @@ struct Source {
   [[noreturn]] void fail(const std::string& ptr, const std::string& what) const;
 };
 
+// Arrays and objects nest at most this deep in any JSON we read: scenes need
+// 5 levels; deeper input is refused at once, before it costs memory.
+inline constexpr int kMaxJsonDepth = 64;
+
 // Parses `text` (comments tolerated); syntax errors name line, column and
-// byte, and a key repeated in one object is an error (nlohmann would keep
-// the last).
+// byte, a key repeated in one object is an error (nlohmann would keep
+// the last), and so is nesting deeper than kMaxJsonDepth.
 Json parseJson(const Source& c, const std::string& text);
 
 const Json* find(const Json& obj, const std::string& key);

@@ -3,6 +3,7 @@
 // watts). What each type means, reads and packs is in its unit
 // (lights/light_type.h).
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include <glm/vec2.hpp>
@@ -34,6 +35,7 @@ struct Light {
   glm::dvec2 sizeM{0.0};          // rect: full width (along uAxis) and height
   double powerW = 0.0;            // total radiant flux of the whole emission
   std::string spdLabel;           // "D65", "blackbody 2700 K", "lamp.csv", ...
+  std::filesystem::path spdFile;  // the CSV file the spd was read from (an input: never an output); else empty
   Spd spd;                        // resolved spectrum (relative units)
   std::string name;               // optional "name" from the file; empty when absent
 };

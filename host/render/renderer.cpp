@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include "colour/colour.h"
+#include "json/scene_error.h"
 
 namespace spectrace {
 
@@ -46,7 +50,71 @@ uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const Rend
   return std::min(batch, remaining);
 }
 
+// A number from a one-line file such as /sys/fs/cgroup/memory.max ("max" or
+// absent: none).
+std::optional<uint64_t> readCount(const char* path) {
+  std::optional<uint64_t> value;
+  if (std::FILE* f = std::fopen(path, "r")) {
+    unsigned long long v = 0;
+    if (std::fscanf(f, "%llu", &v) == 1) value = v;
+    std::fclose(f);
+  }
+  return value;
+}
+
+// Bytes of memory this process can still get: MemAvailable, and less when
+// a container's memory limit (cgroup v2) or an address-space or data limit
+// (ulimit -v, -d) is lower.
+uint64_t availableHostBytes() {
+  uint64_t available = UINT64_MAX;
+  if (std::FILE* f = std::fopen("/proc/meminfo", "r")) {
+    char line[256];
+    unsigned long long kib = 0;
+    while (std::fgets(line, sizeof line, f))
+      if (std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1) available = uint64_t(kib) * 1024;
+    std::fclose(f);
+  }
+  const auto cgroupMax = readCount("/sys/fs/cgroup/memory.max");
+  const auto cgroupUsed = readCount("/sys/fs/cgroup/memory.current");
+  if (cgroupMax && cgroupUsed) available = std::min(available, *cgroupMax > *cgroupUsed ? *cgroupMax - *cgroupUsed : 0);
+  for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit limit{};
+    if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      available = std::min<uint64_t>(available, limit.rlim_cur);
+  }
+  return available;
+}
+
+std::string scenePrefix(const Scene& scene) {
+  return scene.sourcePath.empty() ? std::string("<scene>: ") : scene.sourcePath.string() + ": ";
+}
+
 }  // namespace
+
+uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral) {
+  const FilmLayout& film = plan.film;
+  const uint64_t pixels = film.pixelCount();
+  // The full-film histogram: counts, colour sums, squared weight sums.
+  const uint64_t histogram =
+      pixels * (uint64_t(film.bins) + (film.exactColour ? 3 : 0) + (film.weighted() ? 1 : 0)) * sizeof(uint64_t);
+  // Held at once at the end: the result's histogram and a downloaded copy,
+  // plus the CPU reference's own counters.
+  uint64_t bytes = 2 * histogram + (kind == DeviceKind::Cpu ? film.storedCounterCount() * sizeof(uint64_t) : 0);
+  // The image: RGB, XYZ, E, error.E as floats, and the spectral block.
+  bytes += pixels * 8 * sizeof(float) + (spectral ? pixels * film.bins * sizeof(float) : 0);
+  return bytes;
+}
+
+void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral) {
+  const uint64_t needed = filmHostBytes(plan, kind, spectral);
+  const uint64_t available = availableHostBytes();
+  if (needed > available)
+    throw SceneError(fmt::format(
+        "{}/camera/sensor/pixels: a film of {}x{} pixels x {} bins needs about {} bytes ({:.1f} GiB) of memory; "
+        "{} bytes ({:.1f} GiB) are available; use fewer pixels or bins",
+        scenePrefix(scene), plan.film.pixelsX, plan.film.pixelsY, plan.film.bins, needed,
+        double(needed) / double(1ull << 30), available, double(available) / double(1ull << 30)));
+}
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto device = Device::open(options.device, options.log, options.pipelineCache);
@@ -59,8 +127,14 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   result.plan = compileScene(scene, options.seed, options.plan);
   const CompiledScene& plan = result.plan;
   checkBeamScale(scene, plan, options.beams);
-  const auto tracer = device.makeTracer(
-      plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads});
+  // Before any film is allocated: a clear refusal, not a bad_alloc mid-render.
+  checkFilmFitsMemory(scene, plan, device.kind(), options.spectral);
+  std::unique_ptr<Tracer> tracer;
+  try {
+    tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads});
+  } catch (const SceneError& e) {  // the device's limits, named by field; add the file
+    throw SceneError(scenePrefix(scene) + e.what());
+  }
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
   if (options.log)

@@ -74,6 +74,14 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
 void addHostChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
                      const ResolveParameters& parameters, uint64_t beams, bool spectral);
 
+// About the host memory a render of `plan` holds at its peak (histograms,
+// counters, image), and the check render() makes with it before tracing:
+// SceneError naming /camera/sensor/pixels, the bytes needed and the bytes
+// available (MemAvailable, cgroup memory.max, ulimit -v / -d), not a
+// bad_alloc mid-render.
+uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral);
+void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral);
+
 ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams);
 
 }  // namespace spectrace

@@ -24,6 +24,7 @@
 #include <fmt/format.h>
 #include <openssl/evp.h>
 
+#include "json/input_file.h"
 #include "json/json_fields.h"
 #include "lights/light_type.h"
 #include "scene/scene_limits.h"
@@ -203,6 +204,8 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
   const Json& lights = require(c, root, "", "lights");
   if (!lights.is_array() || lights.empty())
     c.fail("/lights", fmt::format("must be a non-empty array of lights (got {})", describe(lights)));
+  if (lights.size() > size_t(kMaxLights))
+    c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", lights.size(), kMaxLights));
   for (size_t i = 0; i < lights.size(); ++i)
     scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
 
@@ -232,16 +235,11 @@ nlohmann::json readSceneJson(const fs::path& file) {
 Scene loadScene(const fs::path& file) { return parseScene(readSceneText(file), file); }
 
 std::string readSceneText(const fs::path& file) {
-  const jf::Source c = sourceFor(file);
-  std::error_code ec;
-  auto status = fs::status(file, ec);
-  if (!fs::exists(status)) c.fail("", "scene file not found");
-  if (fs::is_directory(status)) c.fail("", "is a directory, not a scene file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) c.fail("", fmt::format("cannot open the scene file ({})", std::strerror(errno)));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) c.fail("", "error while reading the scene file");
-  return text;
+  try {
+    return readInputFile(file, "scene file");
+  } catch (const InputFileError& e) {
+    sourceFor(file).fail("", e.reason);
+  }
 }
 
 }  // namespace spectrace

@@ -112,12 +112,15 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
       if (!fs::is_regular_file(resolved, ec)) c.fail(cp, fmt::format("{} is not a regular file", jsonQuoted(resolved.string())));
       light.spd = callSpd(c, cp, [&] { return loadCsvSpd(resolved, column); });
       light.spdLabel = "csv " + rel + (column ? " column " + *column : "");
+      light.spdFile = resolved;
     } else if (form == "table") {
       checkObject(c, v, p, {"table"}, "a table spd");
       std::string tp = child(p, "table");
       const Json& t = v.at("table");
       if (!t.is_array() || t.empty())
         c.fail(tp, fmt::format("must be a non-empty array of [wavelength_nm, value] pairs (got {})", describe(t)));
+      if (t.size() > kMaxSpdPoints)
+        c.fail(tp, fmt::format("has {} points; a spectrum has at most {}", t.size(), kMaxSpdPoints));
       std::vector<double> lambda, value;
       for (size_t i = 0; i < t.size(); ++i) {
         std::string rp = child(tp, i);

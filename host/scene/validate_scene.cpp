@@ -190,6 +190,8 @@ void validateScene(const Scene& scene, const SceneChecker& c) {
   validateSpectrum(scene.spectrum, c);
   validateCamera(scene.camera, c);
   if (scene.lights.empty()) c.fail("/lights", "there are no lights");
+  if (scene.lights.size() > size_t(kMaxLights))
+    c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", scene.lights.size(), kMaxLights));
   double total = 0.0;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     validateLight(scene.lights[i], i, scene, c);

@@ -3,10 +3,12 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "json/input_file.h"
 #include "json/json_fields.h"
 
 namespace spectrace {
@@ -212,10 +214,13 @@ void readLine(const fs::path& file, const Line& line, const std::optional<fs::pa
 }  // namespace
 
 std::vector<JobEntry> readJobFile(const fs::path& file, const std::optional<fs::path>& outDir) {
-  std::ifstream in(file, std::ios::binary);
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec) || !in)
-    throw JobFileError(fmt::format("{}: cannot read the job file (not found or not a file)", file.string()));
+  std::string bytes;
+  try {
+    bytes = readInputFile(file, "job file");
+  } catch (const InputFileError& e) {
+    throw JobFileError(e.what());
+  }
+  std::istringstream in(bytes);
   std::vector<JobEntry> entries;
   std::string text;
   for (size_t number = 1; std::getline(in, text); ++number) {
@@ -224,7 +229,6 @@ std::vector<JobEntry> readJobFile(const fs::path& file, const std::optional<fs::
     if (first == std::string::npos || text[first] == '#') continue;
     readLine(file, Line{text, number}, outDir, entries);
   }
-  if (in.bad()) throw JobFileError(fmt::format("{}: error while reading the job file", file.string()));
   return entries;
 }
 

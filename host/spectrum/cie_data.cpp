@@ -122,6 +122,8 @@ CsvTable parseCsvTable(std::string_view text, const std::string& source) {
     }
     t.lambdaNm.push_back(lambda);
     t.line.push_back(lineNo);
+    if (t.lambdaNm.size() > kMaxSpdPoints)
+      throw SpdError(where() + fmt::format("more than {} data rows, the most a spectrum may have", kMaxSpdPoints));
   }
   if (t.lambdaNm.empty()) throw SpdError(fmt::format("{}: no data rows", source));
   return t;

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "json/input_file.h"
 #include "spectrum/cie_data.h"
 
 namespace spectrace {
@@ -34,6 +35,8 @@ Spd validated(std::vector<double> lambdaNm, std::vector<double> value, const std
     throw SpdError(fmt::format("{}{} wavelengths but {} values", context, lambdaNm.size(), value.size()));
   if (lambdaNm.size() < 2)
     throw SpdError(fmt::format("{}a tabulated SPD needs at least 2 points (got {})", context, lambdaNm.size()));
+  if (lambdaNm.size() > kMaxSpdPoints)
+    throw SpdError(fmt::format("{}a tabulated SPD has at most {} points (got {})", context, kMaxSpdPoints, lambdaNm.size()));
   for (size_t i = 0; i < lambdaNm.size(); ++i) {
     const double l = lambdaNm[i], v = value[i];
     if (!std::isfinite(l)) throw SpdError(fmt::format("{}: non-finite wavelength ({})", label(i), l));
@@ -221,17 +224,13 @@ Spd makeBlackbodySpd(double kelvin, double minNm, double maxNm) {
 }
 
 Spd loadCsvSpd(const std::filesystem::path& file, const std::optional<std::string>& column) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    throw SpdError(fmt::format("SPD file not found: '{}'", file.string()));
-  if (std::filesystem::is_directory(file, ec))
-    throw SpdError(fmt::format("SPD file '{}' is a directory", file.string()));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SpdError(fmt::format("cannot open SPD file '{}'", file.string()));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw SpdError(fmt::format("error reading SPD file '{}'", file.string()));
-  const CsvTable t = parseCsvTable(ss.str(), file.string());
+  std::string text;
+  try {
+    text = readInputFile(file, "SPD file");
+  } catch (const InputFileError& e) {
+    throw SpdError(e.what());
+  }
+  const CsvTable t = parseCsvTable(text, file.string());
   size_t col = 0;
   if (column) {
     col = csvColumnIndex(t, *column);

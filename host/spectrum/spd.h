@@ -15,6 +15,11 @@ struct SpdError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A tabulated spectrum (CSV rows, an inline table) has at most this many
+// points: far finer than any measured spectrum, and its device table stays
+// a few tens of MB (docs/reliability.md "Input limits").
+inline constexpr size_t kMaxSpdPoints = 1000000;
+
 // Relative spectral power: a density that is piecewise linear through the
 // nodes (lambdaNm[i], value[i]) and zero outside [lambdaNm.front(),
 // lambdaNm.back()]. A single node is a Dirac line carrying `value[0]`.

@@ -1,0 +1,75 @@
+#include "json/input_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <system_error>
+
+#include <fmt/format.h>
+
+namespace spectrace {
+namespace {
+
+std::string errnoText(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+const char* kindOf(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a pipe (FIFO)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Closes the descriptor on every path out.
+struct FdCloser {
+  int fd;
+  ~FdCloser() { ::close(fd); }
+};
+
+}  // namespace
+
+std::string readInputFile(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
+  auto fail = [&](const std::string& why) { return InputFileError(fmt::format("{}: {}", file.string(), why), why); };
+  struct stat st{};
+  if (::stat(file.c_str(), &st) != 0) {
+    const int err = errno;
+    throw fail(err == ENOENT ? fmt::format("{} not found", what)
+                             : fmt::format("cannot read the {}: {}", what, errnoText(err)));
+  }
+  // Checked before open(): opening a FIFO for reading blocks until a writer comes.
+  if (!S_ISREG(st.st_mode)) throw fail(fmt::format("is {}, not a {}", kindOf(st.st_mode), what));
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw fail(fmt::format("cannot open the {}: {}", what, errnoText(errno)));
+  const FdCloser closer{fd};
+  // fstat again: the path may have been replaced between stat() and open().
+  if (::fstat(fd, &st) != 0) throw fail(fmt::format("cannot read the {}: {}", what, errnoText(errno)));
+  if (!S_ISREG(st.st_mode)) throw fail(fmt::format("is {}, not a {}", kindOf(st.st_mode), what));
+  if (uint64_t(st.st_size) > maxBytes)
+    throw fail(fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what, uint64_t(st.st_size),
+                           maxBytes, maxBytes >> 20));
+  std::string bytes(size_t(st.st_size), '\0');
+  size_t done = 0;
+  // Reads at most maxBytes + 1 bytes: a file that grows while read is refused.
+  for (;;) {
+    if (done == bytes.size()) {
+      if (done > maxBytes) break;
+      bytes.resize(std::min<uint64_t>(maxBytes + 1, std::max<uint64_t>(2 * done, 4096)));
+    }
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw fail(fmt::format("error while reading the {}: {}", what, errnoText(errno)));
+    }
+    if (n == 0) break;
+    done += size_t(n);
+  }
+  if (done > maxBytes)
+    throw fail(fmt::format("the {} is more than {} bytes ({} MiB), the most that is read", what, maxBytes, maxBytes >> 20));
+  bytes.resize(done);
+  return bytes;
+}
+
+}  // namespace spectrace

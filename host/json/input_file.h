@@ -1,0 +1,30 @@
+#pragma once
+// Reading an input file (scene, job file, CSV spectrum, render state) with
+// bounds: only a regular file is read (never /dev/zero, a FIFO or a folder,
+// which could block or never end), and never more than a limit, checked
+// before the bytes are read. docs/reliability.md "Input limits".
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace spectrace {
+
+// Text inputs (scene files, job files, CSV spectra) are at most this big:
+// far above any real scene or table, far below what would exhaust memory.
+inline constexpr uint64_t kMaxInputFileBytes = uint64_t(64) << 20;  // 64 MiB
+
+// The file cannot be read or breaks a bound. The message is "<path>: <why>";
+// callers turn it into their own error type (SceneError, SpdError, ...).
+struct InputFileError : std::runtime_error {
+  InputFileError(const std::string& message, std::string why) : std::runtime_error(message), reason(std::move(why)) {}
+  std::string reason;  // the message without the path
+};
+
+// The whole file, when it is a regular file of at most `maxBytes` bytes.
+// `what` names the kind of file in messages ("scene file", "SPD file").
+std::string readInputFile(const std::filesystem::path& file, const char* what,
+                          uint64_t maxBytes = kMaxInputFileBytes);
+
+}  // namespace spectrace
