@@ -2,8 +2,8 @@
 # shards: three shards of one render, traced on gpu, cpu and gpu, merged on
 #   the gpu, give the same EXR pixels as one gpu render of all the beams.
 # kill: a render killed (SIGKILL, by the timeout) after its first checkpoints
-#   resumes from its state and ends with the same EXR pixels as an
-#   uninterrupted render.
+#   resumes from its state (removing the stale temporary files of the killed
+#   process) and ends with the same EXR pixels as an uninterrupted render.
 file(REMOVE_RECURSE ${DIR})
 file(MAKE_DIRECTORY ${DIR})
 function(run)
@@ -37,6 +37,20 @@ if(MODE STREQUAL "shards")
   if(NOT rc EQUAL 2 OR NOT err MATCHES "overlap")
     message(FATAL_ERROR "an overlapping merge was not refused with exit code 2 (${rc}): ${err}")
   endif()
+  # merge -o goes through render's output checks: an input state, a device
+  # node and a .png are refused (exit 2) and the state is left as it was.
+  file(SHA256 ${DIR}/shard0.state before)
+  foreach(output ${DIR}/shard0.state /dev/null ${DIR}/merged.png)
+    execute_process(COMMAND ${SPECTRACE} merge ${DIR}/shard0.state ${DIR}/shard1.state -o ${output} -q
+                    RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 2 OR NOT err MATCHES "spectrace: error: output ")
+      message(FATAL_ERROR "merge -o ${output} was not refused with exit code 2 (${rc}): ${err}")
+    endif()
+  endforeach()
+  file(SHA256 ${DIR}/shard0.state after)
+  if(NOT before STREQUAL after)
+    message(FATAL_ERROR "merge -o overwrote its input state")
+  endif()
 elseif(MODE STREQUAL "kill")
   set(beams 60000000)
   execute_process(COMMAND ${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1
@@ -48,8 +62,17 @@ elseif(MODE STREQUAL "kill")
   if(NOT EXISTS ${DIR}/killed.state)
     message(FATAL_ERROR "no state was written before the kill")
   endif()
-  run(${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1 -o ${DIR}/resumed.exr
-      --resume ${DIR}/killed.state -q --no-png)
+  # A temporary file the kill may have left (killed.exr.tmp-PID) stands in
+  # for one for sure: the next render to that output removes it.
+  file(WRITE ${DIR}/killed.exr.tmp-2147483000 "partial")
+  run(${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1 -o ${DIR}/killed.exr
+      --resume ${DIR}/killed.state --state ${DIR}/resumed.state -q --no-png)
+  foreach(leftover killed.exr.tmp-2147483000 .killed.exr.lock)
+    if(EXISTS ${DIR}/${leftover})
+      message(FATAL_ERROR "${leftover} was left beside the output")
+    endif()
+  endforeach()
+  file(RENAME ${DIR}/killed.exr ${DIR}/resumed.exr)
   run(${SPECTRACE} render ${SCENE} --beams ${beams} --device cpu --threads 1 -o ${DIR}/whole.exr -q --no-png)
   expect_same(${DIR}/resumed.exr ${DIR}/whole.exr)
 else()

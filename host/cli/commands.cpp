@@ -68,6 +68,11 @@ int runMerge(const MergeCommand& command) {
       }
       merged = mergeStates(merged, next);
     }
+    // The same output checks as render, before the film is developed: the
+    // states and the scene they name are inputs, never overwritten.
+    std::vector<std::filesystem::path> inputs(command.states.begin(), command.states.end());
+    inputs.emplace_back(merged.fingerprint.sceneFile);
+    checkOutputPath(command.output, inputs);
     std::function<void(const std::string&)> log;
     if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     const Session session(parseDeviceChoice(command.device), log);

@@ -172,7 +172,8 @@ int main(int argc, char** argv) {
   } catch (const vk_util::VulkanError& e) {
     return fail(kExitRuntime, e.what());
   } catch (const std::bad_alloc&) {
-    return fail(kExitRuntime, "out of memory");
+    // Films are checked against the memory before tracing; this is what is left.
+    return fail(kExitRuntime, "out of memory (an allocation failed); use fewer pixels, bins, lights or table rows");
   } catch (const std::exception& e) {
     return fail(kExitRuntime, e.what());
   }

@@ -1,8 +1,11 @@
 #include "session/session.h"
 
 #include "compile/compile_scene.h"
+#include "session/output_guard.h"
 
 #include <chrono>
+#include <cstdio>
+#include <utility>
 #include <fmt/format.h>
 #include <system_error>
 
@@ -109,16 +112,20 @@ void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerp
 }  // namespace
 
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs) {
+  std::vector<std::filesystem::path> all = inputs;
+  all.push_back(job.scene.sourcePath);
+  for (const Light& light : job.scene.lights) all.push_back(light.spdFile);  // the scene's CSV spectra
+  checkOutputPath(job.output, all);
+}
+
+void checkOutputPath(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs) {
   namespace fs = std::filesystem;
-  const fs::path& output = job.output;
   const std::string name = output.string();
   std::error_code ec;
   const fs::file_status st = fs::status(output, ec);
   const bool exists = !ec && fs::exists(st);
   if (exists) {
-    std::vector<fs::path> all = inputs;
-    all.push_back(job.scene.sourcePath);
-    for (const auto& input : all) {
+    for (const auto& input : inputs) {
       if (input.empty()) continue;
       std::error_code eq;
       if (fs::equivalent(output, input, eq) && !eq)
@@ -150,8 +157,60 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
   ::unlink(probe.c_str());
 }
 
+namespace {
+
+// Checkpoint writes that fail (a full disk, a quota) do not stop the render:
+// the last good file stays (writes are atomic), the render goes on, and the
+// next checkpoint tries again. One warning per streak of failures.
+class CheckpointWriter {
+ public:
+  explicit CheckpointWriter(std::function<void(const std::string&)> warn) : warn_(std::move(warn)) {}
+
+  // Runs `write`; true when it succeeded.
+  template <typename Write>
+  bool attempt(const std::filesystem::path& file, uint64_t beams, Write&& write) {
+    try {
+      write();
+    } catch (const std::exception& e) {  // ImageIoError, FilmStateError: both name the file and the reason
+      if (!failing_)
+        warn_(fmt::format("checkpoint of {} beams not written, the render goes on and retries at the next "
+                          "checkpoint: {}{}",
+                          beams, e.what(),
+                          lastGood_ ? fmt::format(" ({} still holds the checkpoint of {} beams)", file.string(), lastGood_)
+                                    : std::string()));
+      failing_ = true;
+      return false;
+    }
+    if (failing_) warn_(fmt::format("checkpoint of {} beams written to {} again", beams, file.string()));
+    failing_ = false;
+    lastGood_ = beams;
+    return true;
+  }
+
+  // The beams of the last checkpoint written (0: none).
+  uint64_t lastGood() const { return lastGood_; }
+
+ private:
+  std::function<void(const std::string&)> warn_;
+  bool failing_ = false;
+  uint64_t lastGood_ = 0;
+};
+
+void warnOnStderr(const std::string& line) { std::fprintf(stderr, "spectrace: warning: %s\n", line.c_str()); }
+
+}  // namespace
+
 RenderResult Session::render(const RenderJob& job) const {
   checkOutputPath(job);
+  const OutputLock lock(job.output);  // a second render to this output is refused until we are done
+  {
+    auto preview = job.output;
+    preview.replace_extension(".png");
+    for (const auto& target : {job.output, preview, job.state})
+      if (!target.empty())
+        for (const auto& stale : removeStaleTemporaries(target))
+          if (job.options.log) job.options.log("removed the stale temporary file " + stale.string());
+  }
   RenderOptions options = job.options;
   options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
   options.beams = job.beamCount();
@@ -169,9 +228,11 @@ RenderResult Session::render(const RenderJob& job) const {
     if (job.state.empty()) return;
     writeFilmState(job.state, FilmState{fingerprint, {{options.firstBeam, done}}, film});
   };
+  const auto warn = job.warn ? job.warn : std::function<void(const std::string&)>(warnOnStderr);
+  CheckpointWriter exrCheckpoints(warn), stateCheckpoints(warn);
   auto onCheckpointFilm = options.onCheckpointFilm;
   options.onCheckpointFilm = [&](const SpectralHistogram& film, uint64_t done) {
-    writeState(film, done);
+    stateCheckpoints.attempt(job.state, done, [&] { writeState(film, done); });
     if (onCheckpointFilm) onCheckpointFilm(film, done);
   };
   const auto start = std::chrono::steady_clock::now();
@@ -179,9 +240,20 @@ RenderResult Session::render(const RenderJob& job) const {
   // A checkpoint is a complete, valid image of the beams finished so far.
   options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeExr(output, image,
-             renderMetadata(job.scene, device, options.plan.aim, options.seed, options.firstBeam, done, seconds));
-    if (onCheckpoint) onCheckpoint(image, done, device);
+    const bool written = exrCheckpoints.attempt(output, done, [&] {
+      writeExr(output, image,
+               renderMetadata(job.scene, device, options.plan.aim, options.seed, options.firstBeam, done, seconds));
+    });
+    if (written && onCheckpoint) onCheckpoint(image, done, device);
+  };
+  // The final write failing is a run-time failure; say what survived.
+  auto lastCheckpoint = [&] {
+    return exrCheckpoints.lastGood()
+               ? fmt::format("; {} still holds the last checkpoint ({} beams){}", output.string(), exrCheckpoints.lastGood(),
+                             stateCheckpoints.lastGood() ? fmt::format(" and {} its state ({} beams)", job.state.string(),
+                                                                       stateCheckpoints.lastGood())
+                                                         : std::string())
+               : std::string();
   };
   try {
     RenderResult result = spectrace::render(job.scene, options, *device_);
@@ -193,9 +265,9 @@ RenderResult Session::render(const RenderJob& job) const {
                job.png);
     return result;
   } catch (const ImageIoError& e) {
-    throw OutputError(e.what());
+    throw OutputError(e.what() + lastCheckpoint());
   } catch (const FilmStateError& e) {
-    throw OutputError(e.what());
+    throw OutputError(e.what() + lastCheckpoint());
   }
 }
 
@@ -219,6 +291,8 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   if (job.scene.sourceSha256 != f.sceneSha256)
     throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
                                      f.sceneFile, job.scene.sourceSha256, f.sceneSha256));
+  job.output = output;
+  checkOutputPath(job);  // the scene and its CSV spectra are inputs too
   job.seed = f.seed;
   job.beams = state.beams();
   job.options.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
@@ -241,6 +315,8 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   addHostChannels(result.image, state.histogram, plan, parameters, result.beamsTraced,
                   spectral || job.scene.outputSpectral);
   prepareFolder(output);
+  const OutputLock lock(output);
+  removeStaleTemporaries(output);
   try {
     writeImage(output, result.image,
                renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,

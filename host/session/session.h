@@ -36,6 +36,8 @@ struct RenderJob {
   // A state to go on from: it must be this job's (same fingerprint) and
   // cover beams [firstBeam, firstBeam + k); the render traces the rest.
   std::optional<FilmState> resume;
+  // Warnings (a checkpoint that could not be written); default: stderr.
+  std::function<void(const std::string&)> warn;
 
   uint64_t beamCount() const { return beams.value_or(scene.render.beams); }
   uint64_t seedValue() const { return seed.value_or(scene.render.seed); }
@@ -53,12 +55,15 @@ struct OutputPathError : OutputError {
 };
 
 // Checks, before any tracing, that the job's output can be written without
-// harm: it is absent or a regular file; it is not the scene file nor any of
-// `inputs` (compared with std::filesystem::equivalent); it ends in .exr (so
-// the PNG preview beside it never replaces it); and its folder can be
-// created and holds a new file (a probe file is created and removed).
+// harm: it is absent or a regular file; it is not the scene file, one of the
+// scene's CSV spectra nor any of `inputs` (compared with
+// std::filesystem::equivalent); it ends in .exr (so the PNG preview beside
+// it never replaces it); and its folder can be created and holds a new file
+// (a probe file is created and removed).
 // Throws OutputPathError naming the path and the reason.
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs = {});
+// The same checks for any output (merge -o): `inputs` are all the files read.
+void checkOutputPath(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
 
 class Session {
  public:
