@@ -169,13 +169,19 @@ class CheckpointWriter {
   // Runs `write`; true when it succeeded.
   template <typename Write>
   bool attempt(const std::filesystem::path& file, uint64_t beams, Write&& write) {
+    std::string failure;
     try {
       write();
-    } catch (const std::exception& e) {  // ImageIoError, FilmStateError: both name the file and the reason
+    } catch (const ImageIoError& e) {  // both name the file and the reason
+      failure = e.what();
+    } catch (const FilmStateError& e) {
+      failure = e.what();
+    }
+    if (!failure.empty()) {
       if (!failing_)
         warn_(fmt::format("checkpoint of {} beams not written, the render goes on and retries at the next "
                           "checkpoint: {}{}",
-                          beams, e.what(),
+                          beams, failure,
                           lastGood_ ? fmt::format(" ({} still holds the checkpoint of {} beams)", file.string(), lastGood_)
                                     : std::string()));
       failing_ = true;
