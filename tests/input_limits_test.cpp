@@ -104,6 +104,7 @@ TEST_F(InputLimits, OnlyRegularFilesWithinTheSizeLimitAreRead) {
   EXPECT_THAT(errorOf([&] { loadScene(big); }), HasSubstr("invalid JSON"));
   const fs::path small = write("small.txt", "0123456789");
   EXPECT_EQ(readInputFile(small, "file", 10), "0123456789");
+  EXPECT_EQ(readInputFile(small, "file", UINT64_MAX), "0123456789");  // no bound (state files)
   EXPECT_THROW(readInputFile(small, "file", 9), InputFileError);
 }
 

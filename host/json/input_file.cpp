@@ -4,7 +4,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <system_error>
 
@@ -50,14 +49,11 @@ std::string readInputFile(const std::filesystem::path& file, const char* what, u
   if (uint64_t(st.st_size) > maxBytes)
     throw fail(fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what, uint64_t(st.st_size),
                            maxBytes, maxBytes >> 20));
-  std::string bytes(size_t(st.st_size), '\0');
+  // One byte more than the size: reading it means the file grew while read.
+  const size_t size = size_t(st.st_size);
+  std::string bytes(size + 1, '\0');
   size_t done = 0;
-  // Reads at most maxBytes + 1 bytes: a file that grows while read is refused.
-  for (;;) {
-    if (done == bytes.size()) {
-      if (done > maxBytes) break;
-      bytes.resize(std::min<uint64_t>(maxBytes + 1, std::max<uint64_t>(2 * done, 4096)));
-    }
+  while (done < bytes.size()) {
     const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -66,8 +62,7 @@ std::string readInputFile(const std::filesystem::path& file, const char* what, u
     if (n == 0) break;
     done += size_t(n);
   }
-  if (done > maxBytes)
-    throw fail(fmt::format("the {} is more than {} bytes ({} MiB), the most that is read", what, maxBytes, maxBytes >> 20));
+  if (done > size) throw fail(fmt::format("the {} grew while it was read; refusing a file that is still being written", what));
   bytes.resize(done);
   return bytes;
 }
