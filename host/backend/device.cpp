@@ -52,8 +52,10 @@ std::vector<DeviceSpec> listDevices(const std::string& filter) {
   return devices;
 }
 
-Device::Device(std::unique_ptr<vk_util::Context> vulkan) : vulkan_(std::move(vulkan)) {}
-Device::~Device() = default;
+Device::Device(std::unique_ptr<vk_util::Context> vulkan)
+    : vulkan_(std::move(vulkan)), buffers_(std::make_shared<TracerBufferPool>()) {}
+// The pooled buffers go before the context they were made on.
+Device::~Device() { buffers_.reset(); }
 
 namespace {
 
@@ -98,8 +100,10 @@ void Device::savePipelineCache() const {
 
 std::string Device::pipelineCachePath() const { return vulkan_ ? vulkan_->pipelineCachePath() : ""; }
 
+uint64_t Device::bufferAllocations() const { return buffers_->allocations(); }
+
 std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const TracerOptions& options) const {
-  if (vulkan_) return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures);
+  if (vulkan_) return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures, buffers_);
   return std::make_unique<CpuTracer>(plan, options.cpuThreads);
 }
 

@@ -14,6 +14,7 @@ namespace spectrace {
 namespace vk_util {
 class Context;
 }
+class TracerBufferPool;
 
 enum class DeviceChoice { Auto, Gpu, Cpu };
 DeviceChoice parseDeviceChoice(const std::string& text);  // throws std::invalid_argument
@@ -62,10 +63,14 @@ class Device {
   void savePipelineCache() const;
   // The pipeline cache file in use ("" : none, or the CPU reference).
   std::string pipelineCachePath() const;
+  // Device buffers allocated so far for tracers: they are kept and reused by
+  // the next tracer when its shapes fit (0 on the CPU reference).
+  uint64_t bufferAllocations() const;
 
  private:
   explicit Device(std::unique_ptr<vk_util::Context> vulkan);
   std::unique_ptr<vk_util::Context> vulkan_;  // null for the CPU reference
+  std::shared_ptr<TracerBufferPool> buffers_;  // shared by its Vulkan tracers
 };
 
 }  // namespace spectrace

@@ -20,13 +20,45 @@ static_assert(kMaxBins / device::kResolveBinsPerIteration < 65535, "resolve.comp
 namespace {
 
 template <typename T>
-Buffer uploadedBuffer(const vk_util::Context& context, const std::vector<T>& data) {
-  Buffer buffer(context, std::max<vk::DeviceSize>(sizeof(T) * data.size(), 16), {}, MemoryPlacement::DeviceLocal);
+Buffer uploadedBuffer(TracerBufferPool& pool, const vk_util::Context& context, const std::string& role,
+                      const std::vector<T>& data) {
+  Buffer buffer = pool.take(context, role, std::max<vk::DeviceSize>(sizeof(T) * data.size(), 16), MemoryPlacement::DeviceLocal);
   buffer.upload(data.data(), sizeof(T) * data.size());
   return buffer;
 }
 
+std::shared_ptr<TracerBufferPool> poolOrOwn(std::shared_ptr<TracerBufferPool> pool) {
+  return pool ? std::move(pool) : std::make_shared<TracerBufferPool>();
+}
+
 }  // namespace
+
+Buffer TracerBufferPool::take(const vk_util::Context& context, const std::string& role, vk::DeviceSize bytes,
+                              MemoryPlacement placement) {
+  {
+    const std::lock_guard lock(mutex_);
+    const auto it = free_.find(role);
+    if (it != free_.end() && it->second.size() >= bytes && it->second.placement() == placement) {
+      Buffer reused = std::move(it->second);
+      free_.erase(it);
+      return reused;
+    }
+    ++allocations_;
+  }
+  return Buffer(context, bytes, {}, placement);
+}
+
+void TracerBufferPool::giveBack(const std::string& role, Buffer buffer) {
+  if (!buffer.handle()) return;
+  const std::lock_guard lock(mutex_);
+  auto [it, added] = free_.try_emplace(role, std::move(buffer));
+  if (!added && it->second.size() < buffer.size()) it->second = std::move(buffer);
+}
+
+uint64_t TracerBufferPool::allocations() const {
+  const std::lock_guard lock(mutex_);
+  return allocations_;
+}
 
 // A pipeline's descriptor layout from its one binding table (device_shared.h).
 std::vector<vk_util::BindingSpec> bindingSpecs(std::span<const device::BindingSlot> table) {
@@ -106,7 +138,10 @@ HistogramSplit HistogramSplit::forDevice(uint64_t pixels, uint32_t countersPerPi
 
 void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRange, uint64_t deviceLocalHeapBytes,
                           const std::string& deviceName) {
-  const uint64_t tableBytes = plan.device.intervals.size() * sizeof(device::SpectralInterval);
+  // The intervals and their alias columns (up to twice as many) are each
+  // one storage buffer.
+  const uint64_t tableBytes = std::max(plan.device.intervals.size() * sizeof(device::SpectralInterval),
+                                       plan.device.aliasColumns.size() * sizeof(device::AliasColumn));
   if (tableBytes > maxStorageBufferRange) {
     // Name the light with the largest table: the field to make coarser.
     size_t largest = 0;
@@ -133,8 +168,9 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
 }
 
 VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize,
-                           uint32_t specialisedFeatures)
+                           uint32_t specialisedFeatures, std::shared_ptr<TracerBufferPool> buffers)
     : context_(context),
+      buffers_(poolOrOwn(std::move(buffers))),
       plan_(plan),
       workgroupSize_(workgroupSize),
       traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures)),
@@ -142,13 +178,13 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
                                    context.info().name),
               HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
                                         context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize))),
-      traceConstants_(context, sizeof(device::TraceConstants), {}, MemoryPlacement::DeviceLocal),
-      lights_(uploadedBuffer(context, plan.device.lights)),
-      intervals_(uploadedBuffer(context, plan.device.intervals)),
-      aliasColumns_(uploadedBuffer(context, plan.device.aliasColumns)),
-      unusedBeamRecords_(context, 16, {}, MemoryPlacement::DeviceLocal),
-      cmfTable_(uploadedBuffer(context, plan.device.cmfTable)),
-      stats_(context, sizeof(device::TraceStats), {}, MemoryPlacement::HostVisible),
+      traceConstants_(buffers_->take(context, "trace constants", sizeof(device::TraceConstants), MemoryPlacement::DeviceLocal)),
+      lights_(uploadedBuffer(*buffers_, context, "lights", plan.device.lights)),
+      intervals_(uploadedBuffer(*buffers_, context, "intervals", plan.device.intervals)),
+      aliasColumns_(uploadedBuffer(*buffers_, context, "alias columns", plan.device.aliasColumns)),
+      unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
+      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", plan.device.cmfTable)),
+      stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       tracePipeline_(context, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
                      sizeof(device::TracePush), specConstants(workgroupSize, false, split_, countsBeamsOnDevice(plan), traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
@@ -160,12 +196,26 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
   for (uint32_t c = 0; c < split_.chunkCount; ++c) {
     const uint64_t pixels =
         std::min<uint64_t>(split_.pixelsPerChunk, plan.film.storedPixelCount() - uint64_t(c) * split_.pixelsPerChunk);
-    histogramChunks_.emplace_back(context, pixels * pixelBytes, vk::BufferUsageFlags{}, MemoryPlacement::DeviceLocal);
+    histogramChunks_.push_back(
+        buffers_->take(context, fmt::format("histogram {}", c), pixels * pixelBytes, MemoryPlacement::DeviceLocal));
+    histogramChunkBytes_.push_back(pixels * pixelBytes);
   }
   bindTraceBuffers(tracePipeline_, unusedBeamRecords_);
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c)
     resolvePipeline_.bindBuffer(device::kBindingResolveHistogram, c, histogramChunks_[c < split_.chunkCount ? c : 0]);
   clear();
+}
+
+VulkanTracer::~VulkanTracer() {
+  buffers_->giveBack("trace constants", std::move(traceConstants_));
+  buffers_->giveBack("lights", std::move(lights_));
+  buffers_->giveBack("intervals", std::move(intervals_));
+  buffers_->giveBack("alias columns", std::move(aliasColumns_));
+  buffers_->giveBack("unused beam records", std::move(unusedBeamRecords_));
+  buffers_->giveBack("cmf table", std::move(cmfTable_));
+  buffers_->giveBack("trace stats", std::move(stats_));
+  for (size_t c = 0; c < histogramChunks_.size(); ++c)
+    buffers_->giveBack(fmt::format("histogram {}", c), std::move(histogramChunks_[c]));
 }
 
 void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Buffer& beamRecords) const {
@@ -249,9 +299,9 @@ SpectralHistogram VulkanTracer::download() const {
   stats_.download(&stats, sizeof(stats));
   std::vector<uint64_t> counters;
   size_t pixel = 0;
-  for (const auto& chunk : histogramChunks_) {
-    counters.resize(chunk.size() / sizeof(uint64_t));
-    chunk.download(counters.data(), chunk.size());
+  for (size_t c = 0; c < histogramChunks_.size(); ++c) {
+    counters.resize(histogramChunkBytes_[c] / sizeof(uint64_t));
+    histogramChunks_[c].download(counters.data(), histogramChunkBytes_[c]);
     unpackDeviceCounters(counters, plan_.film, pixel, histogram);
     pixel += counters.size() / plan_.film.countersPerPixel();
   }
@@ -266,10 +316,10 @@ void VulkanTracer::upload(const SpectralHistogram& histogram) {
   stats_.upload(&stats, sizeof(stats));
   std::vector<uint64_t> counters;
   size_t pixel = 0;
-  for (auto& chunk : histogramChunks_) {
-    counters.resize(chunk.size() / sizeof(uint64_t));
+  for (size_t c = 0; c < histogramChunks_.size(); ++c) {
+    counters.resize(histogramChunkBytes_[c] / sizeof(uint64_t));
     packDeviceCounters(histogram, plan_.film, pixel, counters);
-    chunk.upload(counters.data(), chunk.size());
+    histogramChunks_[c].upload(counters.data(), histogramChunkBytes_[c]);
     pixel += counters.size() / plan_.film.countersPerPixel();
   }
 }
@@ -307,15 +357,15 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters) {
   const uint64_t pixelCount = plan_.film.storedPixelCount();  // only stored pixels are resolved; the others are 0
   const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
 
-  Buffer constantsBuffer(context_, sizeof(constants), {}, MemoryPlacement::DeviceLocal);
+  Buffer constantsBuffer = buffers_->take(context_, "resolve constants", sizeof(constants), MemoryPlacement::DeviceLocal);
   constantsBuffer.upload(&constants, sizeof(constants));
-  Buffer weightsBuffer = uploadedBuffer(context_, weights);
+  Buffer weightsBuffer = uploadedBuffer(*buffers_, context_, "bin weights", weights);
   const uint64_t maxSliceByRange = std::min<uint64_t>(
       pixelCount, std::min(context_.info().maxStorageBufferRange, context_.info().maxMemoryAllocationSize) /
                       sizeof(device::ResolvedPixel));
   // One row of workgroups per slice.
   const uint64_t maxSlice = std::min<uint64_t>(maxSliceByRange, uint64_t(context_.info().maxComputeWorkGroupCount[0]) * workgroupSize_);
-  Buffer output(context_, maxSlice * sizeof(device::ResolvedPixel), {}, MemoryPlacement::HostVisible);
+  Buffer output = buffers_->take(context_, "resolved pixels", maxSlice * sizeof(device::ResolvedPixel), MemoryPlacement::HostVisible);
   resolvePipeline_.bindBuffer(device::kBindingResolveConstants, 0, constantsBuffer);
   resolvePipeline_.bindBuffer(device::kBindingBinWeights, 0, weightsBuffer);
   resolvePipeline_.bindBuffer(device::kBindingResolvedPixels, 0, output);
@@ -350,6 +400,9 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters) {
     }
   }
   developDeviceSeconds_ += deviceSeconds;
+  buffers_->giveBack("resolve constants", std::move(constantsBuffer));
+  buffers_->giveBack("bin weights", std::move(weightsBuffer));
+  buffers_->giveBack("resolved pixels", std::move(output));
   return image;
 }
 

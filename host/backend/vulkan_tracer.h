@@ -2,6 +2,9 @@
 // The Vulkan tracer: trace pass (beams -> 64-bit counter chunks) and resolve
 // pass (counters -> XYZ/RGB/irradiance), both on one device.
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -42,14 +45,39 @@ device::ResolveConstants resolveConstants(const CompiledScene& plan, const Resol
                                           uint32_t pixelsPerChunk);
 std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const ResolveParameters& parameters);
 
+// Device buffers kept between the tracers of one device (a session's jobs).
+// A tracer takes each buffer it needs by role ("histogram 0", "lights", ...)
+// and gives them back when destroyed; the next tracer reuses a buffer whose
+// capacity fits and allocates only when it does not. A reused buffer may be
+// larger than asked: users keep their own sizes and zero what they count into.
+class TracerBufferPool {
+ public:
+  vk_util::Buffer take(const vk_util::Context& context, const std::string& role, vk::DeviceSize bytes,
+                       vk_util::MemoryPlacement placement);
+  // Keeps the larger of `buffer` and any buffer already held for `role`.
+  void giveBack(const std::string& role, vk_util::Buffer buffer);
+  // Buffers allocated so far (reuses not counted).
+  uint64_t allocations() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, vk_util::Buffer> free_;
+  uint64_t allocations_ = 0;
+};
+
 class VulkanTracer final : public Tracer {
  public:
   // `specialisedFeatures` (SpecialisedFeature bits): the scene features the
   // trace pipeline is compiled for (absent light types, light choice,
   // pinhole, exact colour, aiming, fixed by specialisation constants); the
   // others are decided at run time. kSpecialiseNone is the general pipeline.
+  // `buffers`: where its device buffers come from and go back to (a
+  // device's pool, shared by its tracers); null: a pool of its own.
   VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize = 64,
-               uint32_t specialisedFeatures = kSpecialiseAll);
+               uint32_t specialisedFeatures = kSpecialiseAll, std::shared_ptr<TracerBufferPool> buffers = nullptr);
+  ~VulkanTracer() override;
+  VulkanTracer(const VulkanTracer&) = delete;
+  VulkanTracer& operator=(const VulkanTracer&) = delete;
 
   DeviceKind kind() const override { return DeviceKind::Vulkan; }
   std::string deviceName() const override { return context_.info().name; }
@@ -66,6 +94,7 @@ class VulkanTracer final : public Tracer {
 
  private:
   const vk_util::Context& context_;
+  std::shared_ptr<TracerBufferPool> buffers_;  // declared before the buffers taken from it
   CompiledScene plan_;
   uint32_t workgroupSize_;
   std::vector<vk_util::SpecConstant> traceSpecialisation_;  // the scene's trace specialisation constants
@@ -78,6 +107,7 @@ class VulkanTracer final : public Tracer {
   vk_util::Buffer cmfTable_;
   vk_util::Buffer stats_;  // TraceStats
   std::vector<vk_util::Buffer> histogramChunks_;
+  std::vector<uint64_t> histogramChunkBytes_;  // the used part of each chunk (a reused one may be larger)
   vk_util::ComputePipeline tracePipeline_;
   vk_util::ComputePipeline resolvePipeline_;
   vk_util::TimestampQueries timestamps_;
