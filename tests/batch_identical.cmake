@@ -1,5 +1,7 @@
 # A batch renders each job exactly as `spectrace render` renders it alone,
-# and `render a.json b.json -o DIR/` exactly as one render per scene:
+# and `render a.json b.json -o DIR/` exactly as one render per scene, though
+# the batch reuses device buffers and writes each job while the next traces
+# (mixed shapes: sensors, bins, spot/disk/rect lights, pinhole and bare):
 # the EXRs' pixel data are compared bit for bit (exr_pixels_equal).
 # -DSPECTRACE=... -DEXR_EQUAL=... -DSOURCE_DIR=... -DOUT=... -DDEVICE=gpu|cpu
 cmake_minimum_required(VERSION 3.25)
@@ -24,6 +26,7 @@ set(pairs
   "batch/sweep_1_4000K.exr|${data}/lamp_4000k.json"
   "batch/far.exr|${data}/lamp_far.json"
   "batch/disk.exr|${SOURCE_DIR}/scenes/reference/disk_off_axis.json"
+  "batch/rect.exr|${SOURCE_DIR}/scenes/reference/pinhole_rect.json"
   "several/lamp.exr|${SOURCE_DIR}/scenes/batch/lamp.json"
   "several/disk_off_axis.exr|${SOURCE_DIR}/scenes/reference/disk_off_axis.json")
 set(index 0)

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
+#include <future>
+#include <optional>
 #include <unistd.h>
 #include <vector>
 
@@ -53,64 +55,92 @@ int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
   std::vector<Row> rows;
   size_t failed = 0, rendered = 0, skipped = 0;
   const size_t total = entries.size();
+  auto fail = [&](Row& row, const std::string& message) {
+    std::fprintf(stderr, "%sspectrace: error: %s\n", live ? "\r\033[K" : "", message.c_str());
+    row.status = "FAILED";
+    ++failed;
+  };
+  // The job being written while the next one traces (Session::renderOverlapped):
+  // its row is finished, and its errors reported against it, once its writing ends.
+  struct Written {
+    size_t index;
+    std::shared_future<RenderResult> result;
+    uint64_t beams;
+  };
+  std::optional<Written> writing;
+  auto collect = [&]() {
+    if (!writing) return;
+    const size_t i = writing->index;
+    Row& row = rows[i];
+    const JobEntry& entry = entries[i];
+    try {
+      const RenderResult& result = writing->result.get();
+      row.seconds = fmt::format("{:.2f}", result.wallSeconds);
+      row.rate = fmt::format("{:.1f}", double(result.beamsTraced) / result.wallSeconds * 1e-6);
+      if (result.beamsTraced < writing->beams) {
+        row.status = "interrupted";
+        ++failed;
+      } else {
+        row.status = "ok";
+        ++rendered;
+      }
+      if (!command.quiet)
+        std::fprintf(stderr, "%sspectrace: [%zu/%zu] %s -> %s: %llu beams in %s s (%s Mbeam/s) on %s\n",
+                     live ? "\r\033[K" : "", i + 1, total, entry.where.c_str(), row.output.c_str(),
+                     (unsigned long long)result.beamsTraced, row.seconds.c_str(), row.rate.c_str(),
+                     result.deviceName.c_str());
+    } catch (const OutputError& e) {
+      fail(row, fmt::format("{}: /output: {}", entry.where, e.what()));
+    } catch (const std::exception& e) {
+      fail(row, fmt::format("{}: {}", entry.where, e.what()));
+    }
+    writing.reset();
+  };
   for (size_t i = 0; i < total; ++i) {
     JobEntry& entry = entries[i];
-    Row row{entry.where, entry.output.string(), entry.beams ? std::to_string(*entry.beams) : "-", "-", "-", ""};
-    auto fail = [&](const std::string& message) {
-      std::fprintf(stderr, "%sspectrace: error: %s\n", live ? "\r\033[K" : "", message.c_str());
-      row.status = "FAILED";
-      ++failed;
-    };
+    rows.push_back(Row{entry.where, entry.output.string(), entry.beams ? std::to_string(*entry.beams) : "-", "-", "-", ""});
+    std::string error;
     if (cancel.load()) {
-      row.status = "cancelled";
-      rows.push_back(row);
-      continue;
-    }
-    if (!entry.job) {
-      fail(entry.error);
+      rows[i].status = "cancelled";
+    } else if (!entry.job) {
+      error = entry.error;
     } else if (command.skipExisting && outputIsComplete(entry.job->output, entry.job->beamCount())) {
-      row.status = "skipped (complete)";
+      rows[i].status = "skipped (complete)";
       ++skipped;
       if (!command.quiet) std::fprintf(stderr, "spectrace: [%zu/%zu] %s: skipped, %s is complete\n", i + 1, total,
-                                       entry.where.c_str(), row.output.c_str());
+                                       entry.where.c_str(), rows[i].output.c_str());
     } else {
       RenderJob& job = *entry.job;
       job.png = command.png;
       job.options.cancel = &cancel;
       if (live)
-        job.options.onProgress = [&](uint64_t done, uint64_t all) {
-          std::fprintf(stderr, "\r\033[Kspectrace: [%zu/%zu] %s: %5.1f%%", i + 1, total, entry.where.c_str(),
+        job.options.onProgress = [&, i](uint64_t done, uint64_t all) {
+          std::fprintf(stderr, "\r\033[Kspectrace: [%zu/%zu] %s: %5.1f%%", i + 1, total, entries[i].where.c_str(),
                        100.0 * double(done) / double(all));
         };
       try {
-        const RenderResult result = session.render(job);
-        row.seconds = fmt::format("{:.2f}", result.wallSeconds);
-        row.rate = fmt::format("{:.1f}", double(result.beamsTraced) / result.wallSeconds * 1e-6);
-        if (result.beamsTraced < job.beamCount()) {
-          row.status = "interrupted";
-          ++failed;
-        } else {
-          row.status = "ok";
-          ++rendered;
-        }
-        if (!command.quiet)
-          std::fprintf(stderr, "%sspectrace: [%zu/%zu] %s -> %s: %llu beams in %s s (%s Mbeam/s) on %s\n",
-                       live ? "\r\033[K" : "", i + 1, total, entry.where.c_str(), row.output.c_str(),
-                       (unsigned long long)result.beamsTraced, row.seconds.c_str(), row.rate.c_str(),
-                       result.deviceName.c_str());
+        auto result = session.renderOverlapped(job);
+        collect();  // the previous job: written by now
+        writing = Written{i, std::move(result), job.beamCount()};
+        // --fail-fast must know this job's outcome before the next one starts.
+        if (command.failFast) collect();
       } catch (const OutputError& e) {
-        fail(fmt::format("{}: /output: {}", entry.where, e.what()));
+        error = fmt::format("{}: /output: {}", entry.where, e.what());
       } catch (const std::exception& e) {
-        fail(fmt::format("{}: {}", entry.where, e.what()));
+        error = fmt::format("{}: {}", entry.where, e.what());
       }
     }
-    rows.push_back(row);
+    if (!error.empty()) {
+      collect();  // the previous job's report comes first
+      fail(rows[i], error);
+    }
     if (failed && command.failFast) {
       for (size_t j = i + 1; j < total; ++j)
         rows.push_back(Row{entries[j].where, entries[j].output.string(), "-", "-", "-", "not run (--fail-fast)"});
       break;
     }
   }
+  collect();
   if (!command.quiet) {
     printTable(rows);
     std::printf("%zu jobs: %zu rendered, %zu skipped, %zu failed\n", total, rendered, skipped, failed);

@@ -169,7 +169,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   result.histogram = tracer->download();
   const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
   result.image = tracer->develop(parameters);
-  addHostChannels(result.image, result.histogram, plan, parameters, done, options.spectral);
+  if (!options.hostChannelsByCaller)
+    addHostChannels(result.image, result.histogram, plan, parameters, done, options.spectral);
   result.traceDeviceSeconds = tracer->traceDeviceSeconds();
   result.resolveDeviceSeconds = tracer->developDeviceSeconds();
   result.wallSeconds = secondsSince(start);

@@ -43,6 +43,9 @@ struct RenderOptions {
   // traced; the render goes on after them and ends as if never stopped.
   const SpectralHistogram* resumeFilm = nullptr;
   uint64_t resumedBeams = 0;
+  // Leave the final image's host channels (addHostChannels: error.E and the
+  // spectral block) to the caller, who may compute them on another thread.
+  bool hostChannelsByCaller = false;
   std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
   std::function<void(const std::string&)> log;  // device choice and notices
 };

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <utility>
 #include <fmt/format.h>
+#include <memory>
 #include <system_error>
 
 #include <fcntl.h>
@@ -60,19 +61,23 @@ Session::Session(DeviceChoice device, const std::function<void(const std::string
                  const PipelineCacheOptions& pipelineCache)
     : device_(Device::open(device, log, pipelineCache)) {}
 
-Session::~Session() = default;
+Session::Session(std::unique_ptr<Device> device) : device_(std::move(device)) {}
+
+Session::~Session() { finishWriting(); }
 
 namespace {
 
-// A finished image: the EXR, and the PNG preview beside it when asked for.
+// A finished image: the PNG preview beside it when asked for, then the EXR.
+// The EXR comes last: its header marks the job complete (--skip-existing),
+// so a job whose writing failed is never taken for finished.
 void writeImage(const std::filesystem::path& output, const RenderImage& image, const ImageMetadata& metadata,
                 bool png) {
-  writeExr(output, image, metadata);
   if (png) {
     auto preview = output;
     preview.replace_extension(".png");
     writePngPreview(preview, image);
   }
+  writeExr(output, image, metadata);
 }
 
 void prepareFolder(const std::filesystem::path& output) {
@@ -204,11 +209,24 @@ class CheckpointWriter {
 
 void warnOnStderr(const std::string& line) { std::fprintf(stderr, "spectrace: warning: %s\n", line.c_str()); }
 
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ea, eb;
+  const auto ca = std::filesystem::weakly_canonical(a, ea), cb = std::filesystem::weakly_canonical(b, eb);
+  return (!ea && !eb) ? ca == cb : a.lexically_normal() == b.lexically_normal();
+}
+
 }  // namespace
 
-RenderResult Session::render(const RenderJob& job) const {
+RenderResult Session::render(const RenderJob& job) const { return renderOverlapped(job).get(); }
+
+void Session::finishWriting() const {
+  if (writing_.valid()) writing_.wait();
+}
+
+std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job) const {
   checkOutputPath(job);
-  const OutputLock lock(job.output);  // a second render to this output is refused until we are done
+  // A second render to this output is refused until this one's writing is done.
+  auto lock = std::make_shared<const OutputLock>(job.output);
   {
     auto preview = job.output;
     preview.replace_extension(".png");
@@ -221,7 +239,14 @@ RenderResult Session::render(const RenderJob& job) const {
   options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
   options.beams = job.beamCount();
   options.seed = job.seedValue();
+  options.hostChannelsByCaller = true;  // on the writer thread
   const auto& output = job.output;
+  auto preview = output;
+  preview.replace_extension(".png");
+  // The previous job's writer and this job's checkpoints must never write the same file at once.
+  for (const auto& file : writingFiles_)
+    for (const auto& mine : {output, preview, job.state})
+      if (!mine.empty() && sameFile(file, mine)) finishWriting();
   prepareFolder(output);
   FilmFingerprint fingerprint;
   if (!job.state.empty() || job.resume) fingerprint = jobFingerprint(job);
@@ -230,9 +255,10 @@ RenderResult Session::render(const RenderJob& job) const {
     options.resumeFilm = &job.resume->histogram;
     options.resumedBeams = job.resume->beams();
   }
-  auto writeState = [&](const SpectralHistogram& film, uint64_t done) {
-    if (job.state.empty()) return;
-    writeFilmState(job.state, FilmState{fingerprint, {{options.firstBeam, done}}, film});
+  auto writeState = [state = job.state, fingerprint, first = options.firstBeam](const SpectralHistogram& film,
+                                                                                uint64_t done) {
+    if (state.empty()) return;
+    writeFilmState(state, FilmState{fingerprint, {{first, done}}, film});
   };
   const auto warn = job.warn ? job.warn : std::function<void(const std::string&)>(warnOnStderr);
   CheckpointWriter exrCheckpoints(warn), stateCheckpoints(warn);
@@ -252,29 +278,39 @@ RenderResult Session::render(const RenderJob& job) const {
     });
     if (written && onCheckpoint) onCheckpoint(image, done, device);
   };
+  RenderResult result = spectrace::render(job.scene, options, *device_);
+  device_->savePipelineCache();
   // The final write failing is a run-time failure; say what survived.
-  auto lastCheckpoint = [&] {
-    return exrCheckpoints.lastGood()
-               ? fmt::format("; {} still holds the last checkpoint ({} beams){}", output.string(), exrCheckpoints.lastGood(),
-                             stateCheckpoints.lastGood() ? fmt::format(" and {} its state ({} beams)", job.state.string(),
-                                                                       stateCheckpoints.lastGood())
-                                                         : std::string())
-               : std::string();
+  const std::string survived =
+      exrCheckpoints.lastGood()
+          ? fmt::format("; {} still holds the last checkpoint ({} beams){}", output.string(), exrCheckpoints.lastGood(),
+                        stateCheckpoints.lastGood()
+                            ? fmt::format(" and {} its state ({} beams)", job.state.string(), stateCheckpoints.lastGood())
+                            : std::string())
+          : std::string();
+  // Bounded: the previous job is written before this one is handed over.
+  finishWriting();
+  auto write = [result = std::move(result), scene = job.scene, output, png = job.png, spectral = options.spectral,
+                aim = options.plan.aim, seed = options.seed, firstBeam = options.firstBeam, writeState, survived,
+                lock]() mutable -> RenderResult {
+    try {
+      const ResolveParameters parameters = resolveParametersFor(scene, result.plan, result.beamsTraced);
+      addHostChannels(result.image, result.histogram, result.plan, parameters, result.beamsTraced, spectral);
+      writeState(result.histogram, result.beamsTraced);
+      writeImage(output, result.image,
+                 renderMetadata(scene, result.deviceLabel(), aim, seed, firstBeam, result.beamsTraced,
+                                result.wallSeconds),
+                 png);
+      return std::move(result);
+    } catch (const ImageIoError& e) {
+      throw OutputError(e.what() + survived);
+    } catch (const FilmStateError& e) {
+      throw OutputError(e.what() + survived);
+    }
   };
-  try {
-    RenderResult result = spectrace::render(job.scene, options, *device_);
-    writeState(result.histogram, result.beamsTraced);
-    device_->savePipelineCache();
-    writeImage(output, result.image,
-               renderMetadata(job.scene, result.deviceLabel(), options.plan.aim, options.seed, options.firstBeam,
-                              result.beamsTraced, result.wallSeconds),
-               job.png);
-    return result;
-  } catch (const ImageIoError& e) {
-    throw OutputError(e.what() + lastCheckpoint());
-  } catch (const FilmStateError& e) {
-    throw OutputError(e.what() + lastCheckpoint());
-  }
+  writingFiles_ = {output, preview, job.state};
+  writing_ = std::async(std::launch::async, std::move(write)).share();
+  return writing_;
 }
 
 BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_t count) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -70,6 +71,8 @@ class Session {
   // Opens the device once (auto: a GPU if any, else the CPU reference).
   explicit Session(DeviceChoice device, const std::function<void(const std::string&)>& log = {},
                    const PipelineCacheOptions& pipelineCache = {});
+  // On a device opened by the caller.
+  explicit Session(std::unique_ptr<Device> device);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -82,6 +85,19 @@ class Session {
   // written; the result is returned either way only on success.
   RenderResult render(const RenderJob& job) const;
 
+  // The same render, overlapped with the next: it traces the job, then hands
+  // everything after the histogram's download (error and spectral channels,
+  // EXR, PNG, final state) to a writer thread and returns, so the caller can
+  // trace the next job meanwhile. At most one job waits to be written: before
+  // handing this one over it waits until the previous one is written (and,
+  // before tracing, when both would write the same file). Errors found before
+  // or while tracing are thrown here; the writing's (OutputError) by the
+  // future's get(). The destructor and finishWriting() wait for the last write,
+  // so every finished output is complete even after an interrupt.
+  std::shared_future<RenderResult> renderOverlapped(const RenderJob& job) const;
+  // Waits until the last handed-over job is written (its errors stay in its future).
+  void finishWriting() const;
+
   // Develops a (merged) state into `output` on the session's device, as a
   // render of all its beams would: the scene is its fingerprint's file,
   // which must still hash the same and compile to the same film.
@@ -90,6 +106,10 @@ class Session {
 
  private:
   std::unique_ptr<Device> device_;
+  // The job being written on the writer thread, and the files it writes.
+  // Mutable: the hand-over to the writer, not the device's state.
+  mutable std::shared_future<RenderResult> writing_;
+  mutable std::vector<std::filesystem::path> writingFiles_;
 };
 
 // The beams of shard `index` (0-based) of `count` equal parts of `beams`
