@@ -178,8 +178,38 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
           "light): the shader gets smaller.\n\n";
   }
 
+  if (!report.batchProcesses.empty() || !report.batchOverhead.empty() || !report.pipelineCache.empty()) {
+    md << "## Batch\n\n";
+    md << "Many renders in one process (`spectrace batch`, a Session): the device is opened once, pipelines and "
+          "device buffers are kept between jobs, and each job's writing (error channel, EXR, PNG) overlaps the "
+          "next job's trace.\n\n";
+  }
+  if (!report.batchProcesses.empty()) {
+    md << "### Small jobs: one batch against one process per job\n\n";
+    md << "A sweep over the blackbody temperature of `scenes/batch/lamp.json`: one `spectrace batch` process "
+          "against one `spectrace render` process per job, wall time of the processes (start-up, device, "
+          "trace, writing the EXR), same run, same pipeline cache. Target on lavapipe: at least 10x.\n\n";
+    md << "| device | jobs | beams per job | one batch s | separate processes s | separate : batch |\n";
+    md << "| --- | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& r : report.batchProcesses)
+      md << fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.1f} |\n", r.deviceName, r.jobs, r.beamsPerJob,
+                        r.batchSeconds, r.separateSeconds, r.ratio());
+    md << "\n";
+  }
+  if (!report.batchOverhead.empty()) {
+    md << "### Large jobs: batch wall time against device time\n\n";
+    md << "Large jobs of `scenes/batch/lamp.json` in one session (device already open): wall time from the first "
+          "job's start to the last job's files written, against the sum of the trace passes' device time "
+          "(timestamps). Target: within 5%.\n\n";
+    md << "| device | jobs | beams per job | batch wall s | trace device s | overhead | buffer allocations |\n";
+    md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& r : report.batchOverhead)
+      md << fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:+.1f}% | {} |\n", r.deviceName, r.jobs, r.beamsPerJob,
+                        r.batchWallSeconds, r.traceDeviceSeconds, 100.0 * r.overhead(), r.bufferAllocations);
+    md << "\n";
+  }
   if (!report.pipelineCache.empty()) {
-    md << "## Batch: time to first beam, cold and warm pipeline cache\n\n";
+    md << "### Time to first beam, cold and warm pipeline cache\n\n";
     md << "Wall time from opening the Vulkan device to the end of a first small render (pipelines compiled, "
           "4096 beams traced and resolved), first with an empty pipeline cache file, then with the file that run "
           "saved; same run. Drivers that keep nothing in the Vulkan pipeline cache (lavapipe stores only the "

@@ -58,6 +58,27 @@ struct PipelineCacheRow {
   double ratio() const { return coldSeconds / warmSeconds; }
 };
 
+// Many small jobs in one `spectrace batch` process against one `spectrace
+// render` process per job (wall time of the processes, same run).
+struct BatchProcessRow {
+  std::string deviceName;
+  DeviceKind device = DeviceKind::Cpu;
+  uint64_t jobs = 0, beamsPerJob = 0;
+  double batchSeconds = 0, separateSeconds = 0;
+  double ratio() const { return separateSeconds / batchSeconds; }
+};
+
+// Large jobs in one session: the batch's wall time (trace, resolve and
+// writing overlapped with the next job's trace) against the sum of the
+// traces' device time.
+struct BatchOverheadRow {
+  std::string deviceName;
+  uint64_t jobs = 0, beamsPerJob = 0;
+  double batchWallSeconds = 0, traceDeviceSeconds = 0;
+  uint64_t bufferAllocations = 0;  // device buffers allocated for all the jobs (reused when they fit)
+  double overhead() const { return batchWallSeconds / traceDeviceSeconds - 1.0; }
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
@@ -67,6 +88,8 @@ struct BenchReport {
   std::vector<TrimRow> trim;
   std::vector<AimRow> aim;
   std::vector<PipelineCacheRow> pipelineCache;
+  std::vector<BatchProcessRow> batchProcesses;
+  std::vector<BatchOverheadRow> batchOverhead;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };

@@ -8,17 +8,27 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <set>
+#include <sstream>
+#include <algorithm>
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "bench/error_bench.h"
 #include "bench/report.h"
+#include "cli/cli_numbers.h"
 #include "cli/commands.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "scene/scene_builders.h"
+#include "session/session.h"
 
 namespace spectrace::cli {
 namespace {
@@ -240,6 +250,148 @@ std::vector<PipelineCacheRow> runPipelineCacheStudy(const std::vector<DeviceSpec
   return rows;
 }
 
+// Runs this program (/proc/self/exe) with `args`, its output discarded;
+// returns its exit code (-1 if it could not start or died of a signal).
+int runSelf(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::string self = "spectrace";
+  argv.push_back(self.data());
+  std::vector<std::string> copies = args;
+  for (auto& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int failed = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (failed) return -1;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+double secondsOf(const std::function<void()>& work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The blackbody temperatures of the batch section's sweeps.
+std::vector<int> sweepKelvins(size_t count) {
+  std::vector<int> kelvins;
+  for (size_t i = 0; i < count; ++i) kelvins.push_back(2000 + int(i) * 100);
+  return kelvins;
+}
+
+// 64 small jobs: one `batch` process against 64 `render` processes.
+std::vector<BatchProcessRow> runBatchProcesses(const std::vector<DeviceSpec>& devices,
+                                               const std::filesystem::path& lampScene, const std::atomic<bool>& cancel) {
+  constexpr size_t kJobs = 64;
+  constexpr uint64_t kBeams = 100'000;
+  const auto folder = std::filesystem::temp_directory_path() / fmt::format("spectrace-bench-batch-{}", ::getpid());
+  std::filesystem::create_directories(folder);
+  std::ifstream in(lampScene);
+  const nlohmann::json lamp = nlohmann::json::parse(in);
+  const auto kelvins = sweepKelvins(kJobs);
+  {
+    std::ofstream jobs(folder / "jobs.jsonl");
+    jobs << nlohmann::json{{"scene", std::filesystem::absolute(lampScene).string()},
+                           {"output", "batch_{index}.exr"},
+                           {"beams", kBeams},
+                           {"seed", 1},
+                           {"sweep", {{"/lights/0/spd/blackbody_k", kelvins}}}}
+                .dump()
+         << "\n";
+  }
+  for (size_t i = 0; i < kJobs; ++i) {
+    nlohmann::json scene = lamp;
+    scene["lights"][0]["spd"]["blackbody_k"] = kelvins[i];
+    std::ofstream(folder / fmt::format("scene_{}.json", i)) << scene.dump(2);
+  }
+  std::vector<BatchProcessRow> rows;
+  fmt::print("\nBatch: {} jobs of {} beams, one batch process against one render process per job\n", kJobs, kBeams);
+  fmt::print("{:<44} {:>11} {:>14} {:>17}\n", "device", "batch s", "separate s", "separate : batch");
+  std::set<DeviceKind> done;
+  for (const auto& spec : devices) {
+    if (!done.insert(spec.kind).second || cancel.load()) continue;  // the CLI picks devices by kind
+    const std::string device = deviceKindName(spec.kind);
+    BatchProcessRow row{spec.name, spec.kind, kJobs, kBeams};
+    // A warm-up render, so both sides find the same pipeline and shader caches.
+    runSelf({"render", (folder / "scene_0.json").string(), "-o", (folder / "warm.exr").string(), "--beams", "1000",
+             "--device", device, "-q", "--no-png"});
+    int failures = 0;
+    row.batchSeconds = secondsOf([&] {
+      failures += runSelf({"batch", (folder / "jobs.jsonl").string(), "--out-dir", (folder / "batch").string(),
+                           "--device", device, "-q", "--no-png"}) != 0;
+    });
+    row.separateSeconds = secondsOf([&] {
+      for (size_t i = 0; i < kJobs && !cancel.load(); ++i)
+        failures += runSelf({"render", (folder / fmt::format("scene_{}.json", i)).string(), "-o",
+                             (folder / fmt::format("separate_{}.exr", i)).string(), "--beams", std::to_string(kBeams),
+                             "--seed", "1", "--device", device, "-q", "--no-png"}) != 0;
+    });
+    if (failures) throw std::runtime_error(fmt::format("bench: {} of the batch section's processes failed", failures));
+    fmt::print("{:<44} {:>11.2f} {:>14.2f} {:>17.1f}\n", row.deviceName, row.batchSeconds, row.separateSeconds,
+               row.ratio());
+    rows.push_back(row);
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
+  return rows;
+}
+
+// 8 large jobs in one session: wall time against the traces' device time.
+std::vector<BatchOverheadRow> runBatchOverhead(const std::vector<DeviceSpec>& devices,
+                                               const std::filesystem::path& lampScene, const std::atomic<bool>& cancel) {
+  constexpr size_t kJobs = 8;
+  constexpr uint64_t kBeams = 10'000'000;
+  const auto folder = std::filesystem::temp_directory_path() / fmt::format("spectrace-bench-large-{}", ::getpid());
+  std::vector<BatchOverheadRow> rows;
+  const Scene lamp = loadScene(lampScene);
+  for (const auto& spec : devices) {
+    if (spec.kind != DeviceKind::Vulkan || cancel.load()) continue;
+    if (rows.empty()) {
+      fmt::print("\nBatch: {} jobs of {} beams in one session, wall time against the traces' device time\n", kJobs,
+                 kBeams);
+      fmt::print("{:<44} {:>13} {:>15} {:>9} {:>12}\n", "device", "batch wall s", "trace device s", "overhead",
+                 "allocations");
+    }
+    Session session(Device::open(spec));
+    std::vector<RenderJob> jobs;
+    for (size_t i = 0; i < kJobs; ++i) {
+      RenderJob job;
+      job.scene = lamp;
+      job.scene.lights[0].spd = makeBlackbodySpd(sweepKelvins(kJobs)[i], 360, 830);
+      job.output = folder / fmt::format("large_{}.exr", i);
+      job.beams = kBeams;
+      job.options.cancel = &cancel;
+      jobs.push_back(std::move(job));
+    }
+    // A warm-up job, so pipeline compilation stays out of the timing.
+    RenderJob warm = jobs.front();
+    warm.beams = 1000;
+    warm.output = folder / "warm.exr";
+    session.render(warm);
+    BatchOverheadRow row{spec.name, kJobs, kBeams};
+    std::vector<std::shared_future<RenderResult>> results;
+    row.batchWallSeconds = secondsOf([&] {
+      for (const RenderJob& job : jobs) results.push_back(session.renderOverlapped(job));
+      session.finishWriting();
+    });
+    for (const auto& r : results) row.traceDeviceSeconds += r.get().traceDeviceSeconds;
+    row.bufferAllocations = session.device().bufferAllocations();
+    fmt::print("{:<44} {:>13.2f} {:>15.2f} {:>+8.1f}% {:>12}\n", row.deviceName, row.batchWallSeconds,
+               row.traceDeviceSeconds, 100.0 * row.overhead(), row.bufferAllocations);
+    rows.push_back(row);
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
+  return rows;
+}
+
 std::vector<AimRow> runAimStudy(const std::vector<DeviceSpec>& devices, const std::filesystem::path& dir) {
   struct Case {
     const char* scene;
@@ -285,6 +437,21 @@ std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
 
 }  // namespace
 
+void selectBenchSections(BenchCommand& command, const std::string& list) {
+  const std::vector<std::pair<std::string, bool*>> sections = {
+      {"throughput", &command.throughput}, {"specialisation", &command.specialisation}, {"aim", &command.aim},
+      {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour}};
+  for (const auto& [name, flag] : sections) *flag = false;
+  std::stringstream items(list);
+  for (std::string item; std::getline(items, item, ',');) {
+    const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == item; });
+    if (it == sections.end())
+      throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour)",
+                                   list, item));
+    *it->second = true;
+  }
+}
+
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   BenchReport report;
   report.date = utcNow();
@@ -303,7 +470,12 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.trim = runTrim(report.devices, dir.parent_path(), cancel);
   }
   if (command.aim) report.aim = runAimStudy(report.devices, dir);
-  if (command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
+  if (command.batch) {
+    const auto lampScene = dir.parent_path() / "batch" / "lamp.json";
+    report.batchProcesses = runBatchProcesses(report.devices, lampScene, cancel);
+    report.batchOverhead = runBatchOverhead(report.devices, lampScene, cancel);
+  }
+  if (command.batch && command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);

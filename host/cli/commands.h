@@ -75,8 +75,12 @@ struct BenchCommand {
   double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
   uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
   bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true;
+  bool batch = true;          // batch section: one batch against many processes, overhead of large jobs
   bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
 };
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
+// --only: keeps only the named sections (comma-separated: throughput,
+// specialisation, aim, batch, sweep, colour); throws UsageError for others.
+void selectBenchSections(BenchCommand& command, const std::string& list);
 
 }  // namespace spectrace::cli

@@ -136,6 +136,11 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
   benchCmd->add_flag("!--no-aim-study", bench.aim, "Skip the aimed-vs-analog comparison");
   benchCmd->add_flag("!--no-pipeline-cache-study", bench.pipelineCache, "Skip the cold-vs-warm pipeline cache timing");
+  benchCmd->add_flag("!--no-batch", bench.batch, "Skip the batch section (batch against processes, large jobs, pipeline cache)");
+  benchCmd->add_option_function<std::string>(
+      "--only",
+      [&](const std::string& list) { selectBenchSections(bench, list); },
+      "Run only these sections (comma-separated): throughput, specialisation, aim, batch, sweep, colour");
 
   try {
     app.parse(argc, argv);
