@@ -321,8 +321,8 @@ BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_
   return {firstBeam + cut(index), cut(index + 1) - cut(index)};
 }
 
-RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral,
-                              bool png) const {
+RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
+                              double wallSeconds) const {
   const FilmFingerprint& f = state.fingerprint;
   RenderJob job;
   try {
@@ -350,6 +350,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   result.plan = plan;
   result.histogram = state.histogram;
   result.beamsTraced = state.beams();
+  result.wallSeconds = wallSeconds;
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
   const ResolveParameters parameters = resolveParametersFor(job.scene, plan, result.beamsTraced);
@@ -362,7 +363,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   try {
     writeImage(output, result.image,
                renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,
-                              result.beamsTraced, 0.0),
+                              result.beamsTraced, wallSeconds),
                png);
   } catch (const ImageIoError& e) {
     throw OutputError(e.what());

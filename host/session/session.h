@@ -71,7 +71,7 @@ class Session {
   // Opens the device once (auto: a GPU if any, else the CPU reference).
   explicit Session(DeviceChoice device, const std::function<void(const std::string&)>& log = {},
                    const PipelineCacheOptions& pipelineCache = {});
-  // On a device opened by the caller.
+  // On a device the caller opened (e.g. an MPI rank's GPU by local rank).
   explicit Session(std::unique_ptr<Device> device);
   ~Session();
   Session(const Session&) = delete;
@@ -101,8 +101,10 @@ class Session {
   // Develops a (merged) state into `output` on the session's device, as a
   // render of all its beams would: the scene is its fingerprint's file,
   // which must still hash the same and compile to the same film.
+  // `wallSeconds` goes into the header (the time the state took to trace).
   // Throws FilmStateError (bad input) or OutputError.
-  RenderResult develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png) const;
+  RenderResult develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
+                       double wallSeconds = 0.0) const;
 
  private:
   std::unique_ptr<Device> device_;
