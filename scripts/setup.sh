@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev libssl-dev          # scene files, CLI, formatting, SHA-256
   librandom123-dev libgtest-dev libboost-dev                     # Philox, tests, chi-square p-values
   gnuplot-nox                                                    # benchmark plots
+  libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
 )
 missing=()
 for p in "${packages[@]}"; do

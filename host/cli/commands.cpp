@@ -30,16 +30,15 @@ bool namesFolder(const std::filesystem::path& output) {
   return (!text.empty() && text.back() == '/') || std::filesystem::is_directory(output, ec);
 }
 
-// --state, --resume and --shard on a job: 0, or the exit code of bad input.
-int applyStateOptions(const RenderCommand& command, RenderJob& job) {
+// --state, --resume and --shard on a job (throws UsageError).
+void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   if (command.shard) {
     uint64_t index = 0, count = 0;
     char slash = 0;
     char rest = 0;
     if (std::sscanf(command.shard->c_str(), "%" SCNu64 "%c%" SCNu64 "%c", &index, &slash, &count, &rest) != 3 ||
         slash != '/' || count == 0 || index >= count || command.shard->find('-') != std::string::npos) {
-      std::fprintf(stderr, "spectrace: error: --shard %s: give I/K with 0 <= I < K, e.g. 0/4\n", command.shard->c_str());
-      return 2;
+      throw UsageError(fmt::format("--shard {}: give I/K with 0 <= I < K, e.g. 0/4", *command.shard));
     }
     const BeamRange range = shardRange(job.options.firstBeam, job.beamCount(), index, count);
     job.options.firstBeam = range.first;
@@ -52,7 +51,6 @@ int applyStateOptions(const RenderCommand& command, RenderJob& job) {
     job.resume = readFilmState(*command.resume);
     if (!command.state) job.state = *command.resume;
   }
-  return 0;
 }
 
 }  // namespace
@@ -88,20 +86,14 @@ int runMerge(const MergeCommand& command) {
   }
 }
 
-int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
+std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::atomic<bool>& cancel, bool checkOutputs) {
   const bool several = command.scenes.size() > 1;
-  if (several && command.output && !namesFolder(*command.output)) {
-    std::fprintf(stderr,
-                 "spectrace: error: -o %s names one file but there are %zu scenes; give a folder (ending in '/') "
-                 "or leave -o out\n",
-                 command.output->c_str(), command.scenes.size());
-    return 2;
-  }
-  if (several && (command.state || command.resume || command.shard)) {
-    std::fprintf(stderr, "spectrace: error: --state, --resume and --shard take one scene (got %zu)\n",
-                 command.scenes.size());
-    return 2;
-  }
+  if (several && command.output && !namesFolder(*command.output))
+    throw UsageError(fmt::format("-o {} names one file but there are {} scenes; give a folder (ending in '/') "
+                                 "or leave -o out",
+                                 command.output->string(), command.scenes.size()));
+  if (several && (command.state || command.resume || command.shard))
+    throw UsageError(fmt::format("--state, --resume and --shard take one scene (got {})", command.scenes.size()));
   std::vector<RenderJob> jobs;
   for (const auto& path : command.scenes) {
     RenderJob job;
@@ -125,18 +117,23 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     options.plan.colourFromBins = !command.perBeamColour;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     checkBeamRange(command.firstBeam, job.beamCount());
-    if (int code = applyStateOptions(command, job); code != 0) return code;
+    applyStateOptions(command, job);
     std::vector<std::filesystem::path> inputs(command.scenes.begin(), command.scenes.end());
     if (command.resume) inputs.push_back(*command.resume);
-    checkOutputPath(job, inputs);  // before any tracing; exit 2
+    if (checkOutputs) checkOutputPath(job, inputs);  // before any tracing; exit 2
     for (const RenderJob& other : jobs)
-      if (other.output == job.output) {
-        std::fprintf(stderr, "spectrace: error: %s and %s would both be written to %s\n",
-                     other.scene.sourcePath.c_str(), path.c_str(), job.output.c_str());
-        return 2;
-      }
+      if (other.output == job.output)
+        throw UsageError(fmt::format("{} and {} would both be written to {}", other.scene.sourcePath.string(),
+                                     path.string(), job.output.string()));
     jobs.push_back(std::move(job));
   }
+  return jobs;
+}
+
+int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
+  if (command.mpi) return runMpiRender(command, cancel);
+  const bool several = command.scenes.size() > 1;
+  std::vector<RenderJob> jobs = renderJobsOf(command, cancel, true);
 
   std::function<void(const std::string&)> log;
   if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };

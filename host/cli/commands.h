@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backend/device.h"
+#include "session/session.h"
 
 namespace spectrace::cli {
 
@@ -36,8 +37,16 @@ struct RenderCommand {
   std::optional<std::filesystem::path> state;
   std::optional<std::filesystem::path> resume;  // go on from this state (and keep writing it)
   std::optional<std::string> shard;             // "I/K": beams of the I-th (0-based) of K equal parts
+  bool mpi = false;  // split the beams over the MPI ranks; rank 0 writes (cli/mpi_render.cpp)
 };
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
+// The jobs of a render command, checked (throws UsageError and the scene's
+// errors: bad input). `checkOutputs`: also check that each output can be
+// written (checkOutputPath), which creates its folder.
+std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::atomic<bool>& cancel, bool checkOutputs);
+// render --mpi: this process is one rank of an mpirun (cli/mpi_render.cpp;
+// without MPI support, a UsageError saying so).
+int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 
 int runDevices();
 

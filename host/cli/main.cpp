@@ -4,27 +4,14 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <exception>
-#include <new>
-#include <stdexcept>
 
 #include "cli/cli_numbers.h"
 #include "cli/commands.h"
-#include "json/json_fields.h"
-#include "json/scene_error.h"
-#include "session/job_file.h"
-#include "session/session.h"
-#include "spectrum/spd.h"
-#include "vulkan/context.h"
+#include "cli/exit_codes.h"
 
 namespace {
 std::atomic<bool> gCancel{false};
 extern "C" void onSignal(int) { gCancel.store(true); }
-
-// Exit codes (README "Exit codes", docs/reliability.md): this one place maps
-// what went wrong to them; 130 (interrupt) comes from the verbs.
-constexpr int kExitRuntime = 1;   // Vulkan, I/O during the render, out of memory
-constexpr int kExitBadInput = 2;  // CLI arguments, scene file, CSV, job file, output path
 
 int fail(int code, const char* message) {
   std::fprintf(stderr, "spectrace: error: %s\n", message);
@@ -87,6 +74,9 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--state", render.state, "Also write the exact render state (docs/state-format.md)");
   renderCmd->add_option("--resume", render.resume, "Go on from this render state, and keep writing it");
   renderCmd->add_option("--shard", render.shard, "I/K: render the I-th (0-based) of K equal beam ranges");
+  renderCmd->add_flag("--mpi", render.mpi,
+                      "Under mpirun: split the beams over the MPI ranks, sum their films exactly on rank 0, "
+                      "which writes the image (docs/scaling.md)");
 
   MergeCommand merge;
   auto* mergeCmd = app.add_subcommand("merge", "Add render states of disjoint beam ranges exactly, write the image");
@@ -158,29 +148,9 @@ int main(int argc, char** argv) {
     if (mergeCmd->parsed()) return runMerge(merge);
     if (devicesCmd->parsed()) return runDevices();
     if (benchCmd->parsed()) return runBench(bench, gCancel);
-  } catch (const UsageError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const SceneError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const json_fields::JsonFieldError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const SpdError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const JobFileError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const OutputPathError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const FilmStateError& e) {  // a state that cannot be read or does not belong
-    return fail(kExitBadInput, e.what());
-  } catch (const std::invalid_argument& e) {  // parseDeviceChoice
-    return fail(kExitBadInput, e.what());
-  } catch (const vk_util::VulkanError& e) {
-    return fail(kExitRuntime, e.what());
-  } catch (const std::bad_alloc&) {
-    // Films are checked against the memory before tracing; this is what is left.
-    return fail(kExitRuntime, "out of memory (an allocation failed); use fewer pixels, bins, lights or table rows");
-  } catch (const std::exception& e) {
-    return fail(kExitRuntime, e.what());
+  } catch (...) {
+    const Failure failure = failureOf(std::current_exception());
+    return fail(failure.code, failure.message.c_str());
   }
   return 0;
 }
