@@ -1,0 +1,74 @@
+# cmake -DSPECTRACE=... -DCOMPARE=... -DMPIEXEC=... -DSCENE=... -DDIR=... -DDEVICE=cpu|gpu -P cli_mpi.cmake
+# render --mpi under mpirun with 2 and 3 ranks (3 does not divide the beams)
+# gives EXR pixels bit-identical to one process rendering all the beams on
+# the same device, and a state holding exactly those beams; bad input and a
+# failure on one rank end every rank with exit code 2 and 1, without a hang.
+file(REMOVE_RECURSE ${DIR})
+file(MAKE_DIRECTORY ${DIR})
+# OpenMPI: more ranks than cores (CI machines are small), root in CI
+# containers; --mca plm_rsh_agent false: one node, so no ssh is ever needed.
+set(mpirun ${MPIEXEC} --oversubscribe --allow-run-as-root --mca plm_rsh_agent false)
+set(beams 1000001)
+set(render render ${SCENE} --beams ${beams} --device ${DEVICE} --threads 1 -q --no-png)
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}${err}")
+  endif()
+endfunction()
+function(expect_same a b)
+  execute_process(COMMAND ${COMPARE} ${a} ${b} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${a} and ${b} differ: ${out}")
+  endif()
+endfunction()
+# The command must end (no rank left waiting) with exit code `code` and
+# print `regex` exactly once.
+function(expect_failure code regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc STREQUAL "${code}")
+    message(FATAL_ERROR "expected exit code ${code}, got ${rc}: ${ARGN}\n${out}${err}")
+  endif()
+  string(REGEX MATCHALL "${regex}" hits "${err}")
+  list(LENGTH hits n)
+  if(NOT n EQUAL 1)
+    message(FATAL_ERROR "expected \"${regex}\" once, found it ${n} times: ${ARGN}\n${err}")
+  endif()
+endfunction()
+
+run(${SPECTRACE} ${render} -o ${DIR}/whole.exr)
+foreach(ranks 2 3)
+  run(${mpirun} -np ${ranks} ${SPECTRACE} ${render} --mpi -o ${DIR}/mpi${ranks}.exr --state ${DIR}/mpi${ranks}.state)
+  expect_same(${DIR}/mpi${ranks}.exr ${DIR}/whole.exr)
+endforeach()
+# The state rank 0 wrote holds all the beams, [0, beams), and develops into
+# the same image.
+run(${SPECTRACE} merge ${DIR}/mpi3.state -o ${DIR}/from_state.exr --device ${DEVICE} -q --no-png)
+expect_same(${DIR}/from_state.exr ${DIR}/whole.exr)
+file(STRINGS ${DIR}/mpi3.state header LIMIT_INPUT 4096 REGEX "\"ranges\"")
+if(NOT header MATCHES "\"ranges\":\\[\\[0,${beams}\\]\\]")
+  message(FATAL_ERROR "the state of the 3-rank render does not cover [0, ${beams}) in one range:\n${header}")
+endif()
+
+# Bad input: every rank refuses it, the message is printed once (by rank 0).
+expect_failure(2 "spectrace: error: [^\n]*no_such_scene.json"
+  ${mpirun} -np 2 ${SPECTRACE} render ${DIR}/no_such_scene.json --mpi -q -o ${DIR}/bad.exr)
+expect_failure(2 "spectrace: error: --mpi splits the beams over the ranks itself"
+  ${mpirun} -np 2 ${SPECTRACE} ${render} --mpi --shard 0/2 -o ${DIR}/bad.exr)
+# A failure on rank 1 alone must not leave rank 0 waiting for it: on gpu,
+# rank 1 finds no Vulkan driver (run time, exit code 1); on cpu, rank 1 is
+# given a scene it cannot read (bad input, exit code 2).
+if(DEVICE STREQUAL "gpu")
+  expect_failure(1 "spectrace: error: rank 1 of 2: --device gpu"
+    ${mpirun} -np 1 ${SPECTRACE} ${render} --mpi -o ${DIR}/one_failed.exr
+            : -np 1 env VK_DRIVER_FILES=${DIR}/no_such_driver.json VK_ICD_FILENAMES=${DIR}/no_such_driver.json
+              ${SPECTRACE} ${render} --mpi -o ${DIR}/one_failed.exr)
+else()
+  expect_failure(2 "spectrace: error: rank 1 of 2: [^\n]*no_such_scene.json"
+    ${mpirun} -np 1 ${SPECTRACE} ${render} --mpi -o ${DIR}/one_failed.exr
+            : -np 1 ${SPECTRACE} render ${DIR}/no_such_scene.json --beams ${beams} --device cpu --mpi -q
+              -o ${DIR}/one_failed.exr)
+endif()
+if(EXISTS ${DIR}/one_failed.exr OR EXISTS ${DIR}/bad.exr)
+  message(FATAL_ERROR "a failed MPI render wrote an image")
+endif()
