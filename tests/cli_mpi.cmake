@@ -6,8 +6,11 @@
 file(REMOVE_RECURSE ${DIR})
 file(MAKE_DIRECTORY ${DIR})
 # OpenMPI: more ranks than cores (CI machines are small), root in CI
-# containers; --mca plm_rsh_agent false: one node, so no ssh is ever needed.
-set(mpirun ${MPIEXEC} --oversubscribe --allow-run-as-root --mca plm_rsh_agent false)
+# containers; one node, so no ssh is ever needed (plm_rsh_agent false); and
+# shared-memory messages copied through a buffer, not cross-process memory
+# access, which containers without ptrace rights refuse.
+set(mpirun ${MPIEXEC} --oversubscribe --allow-run-as-root --mca plm_rsh_agent false
+           --mca btl_vader_single_copy_mechanism none)
 set(beams 1000001)
 set(render render ${SCENE} --beams ${beams} --device ${DEVICE} --threads 1 -q --no-png)
 function(run)
