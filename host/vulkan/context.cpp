@@ -41,13 +41,24 @@ bool hasExtension(const std::vector<vk::ExtensionProperties>& exts, const char* 
                      [&](const vk::ExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
+// Prints every validation message and records it in the Context's
+// ValidationLog (pUserData), which the next sync point turns into a
+// VulkanError. A message while the Context is being destroyed has no sync
+// point left to fail: it aborts the process, after printing.
 VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                              VkDebugUtilsMessageTypeFlagsEXT,
-                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT     ? "error"
                       : severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT ? "warning"
                                                                                     : "info";
   std::fprintf(stderr, "spectrace: Vulkan validation %s: %s\n", level, data->pMessage);
+  auto* log = static_cast<ValidationLog*>(user);
+  std::lock_guard lock(log->mutex);
+  log->messages.push_back(fmt::format("{}: {}", level, data->pMessage));
+  if (log->tearingDown) {
+    std::fprintf(stderr, "spectrace: a Vulkan validation message while the device was destroyed; aborting\n");
+    std::abort();
+  }
   return VK_FALSE;
 }
 
@@ -298,6 +309,15 @@ Context::Context() : loader_(makeLoader()) {}
 
 Context::~Context() {
   savePipelineCache();
+  if (validationLog_) {
+    std::lock_guard lock(validationLog_->mutex);
+    if (validationLog_->messages.size() > validationLog_->reported) {
+      std::fprintf(stderr, "spectrace: %zu Vulkan validation message(s) were never reported by a sync point; aborting\n",
+                   validationLog_->messages.size() - validationLog_->reported);
+      std::abort();
+    }
+    validationLog_->tearingDown = true;
+  }
   // Outstanding work would be destroyed under the GPU's feet otherwise.
   try {
     if (*device_) device_.waitIdle();
@@ -312,13 +332,15 @@ void Context::init(std::optional<uint32_t> deviceIndex) {
   bool validationOn = false;
   instance_ = makeInstance(loader_, wantValidation, &validationOn);
   if (validationOn) {
+    validationLog_ = std::make_unique<ValidationLog>();
     using Sev = vk::DebugUtilsMessageSeverityFlagBitsEXT;
     using Type = vk::DebugUtilsMessageTypeFlagBitsEXT;
     messenger_ = vk::raii::DebugUtilsMessengerEXT(
         instance_, vk::DebugUtilsMessengerCreateInfoEXT{
                        .messageSeverity = Sev::eWarning | Sev::eError,
                        .messageType = Type::eGeneral | Type::eValidation | Type::ePerformance,
-                       .pfnUserCallback = debugCallback});
+                       .pfnUserCallback = debugCallback,
+                       .pUserData = validationLog_.get()});
   }
 
   vk::raii::PhysicalDevices physical(instance_);
@@ -416,6 +438,18 @@ void Context::submitAndWait(const std::function<void(const vk::raii::CommandBuff
     if (device_.waitForFences(*fence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
       throw VulkanError("waiting for the compute queue's fence did not succeed");
   });
+  throwOnValidationMessages();
+}
+
+void Context::throwOnValidationMessages() const {
+  if (!validationLog_) return;
+  std::lock_guard lock(validationLog_->mutex);
+  const auto& messages = validationLog_->messages;
+  if (messages.size() == validationLog_->reported) return;
+  const size_t first = validationLog_->reported, count = messages.size() - first;
+  validationLog_->reported = messages.size();
+  throw VulkanError(fmt::format("Vulkan validation (SPECTRACE_VALIDATION=1) reported {} message{}; the first: {}", count,
+                                count == 1 ? "" : "s", messages[first]));
 }
 
 uint32_t Context::memoryTypeIndex(uint32_t typeBits, vk::MemoryPropertyFlags wanted,

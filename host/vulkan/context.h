@@ -68,6 +68,15 @@ enum class DeviceRequest {
 std::optional<size_t> preferredDevice(const std::vector<DeviceInfo>& devices,
                                       DeviceRequest request = DeviceRequest::PreferHardware);
 
+// Validation messages received by the debug messenger (SPECTRACE_VALIDATION=1):
+// `reported` of them have been thrown as VulkanError already.
+struct ValidationLog {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+  size_t reported = 0;
+  bool tearingDown = false;  // set by ~Context: a later message aborts
+};
+
 class Context {
  public:
   // Creates instance + device on `deviceIndex` (a DeviceInfo::index) or, if
@@ -76,8 +85,12 @@ class Context {
   // hostQueryReset / shaderStorageBufferArrayDynamicIndexing where present.
   // Throws VulkanError with a precise reason (no loader, no devices, index
   // out of range, or why each device is not usable). SPECTRACE_VALIDATION=1
-  // turns on the Khronos validation layer if it is installed (messages go to
-  // stderr; if it is missing, stderr says so).
+  // turns on the Khronos validation layer if it is installed (if it is
+  // missing, stderr says so and validation stays off). Every validation
+  // warning or error is printed to stderr and makes the next
+  // submitAndWait (or throwOnValidationMessages) throw VulkanError; one still
+  // unreported when the Context is destroyed, or arriving during its
+  // destruction, aborts the process.
   static std::unique_ptr<Context> create(std::optional<uint32_t> deviceIndex = std::nullopt);
 
   Context(const Context&) = delete;
@@ -98,6 +111,12 @@ class Context {
   // throws VulkanError instead of deadlocking. Exceptions from `record`
   // propagate unchanged and nothing is submitted.
   void submitAndWait(const std::function<void(const vk::raii::CommandBuffer&)>& record) const;
+
+  // Whether the validation layer is on (SPECTRACE_VALIDATION=1 and installed).
+  bool validationEnabled() const { return bool(validationLog_); }
+  // Throws VulkanError with the first validation message not yet reported
+  // (a no-op without validation). submitAndWait calls it after each wait.
+  void throwOnValidationMessages() const;
 
   // A memory type allowed by `typeBits` with all `wanted` flags, preferring
   // one that also has all `preferred` flags. VulkanError if none.
@@ -139,6 +158,7 @@ class Context {
   // children before the instance, the instance before the loader.
   vk::raii::Context loader_;
   vk::raii::Instance instance_{nullptr};
+  std::unique_ptr<ValidationLog> validationLog_;  // outlives the messenger that writes to it
   vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
   vk::raii::PhysicalDevice physicalDevice_{nullptr};
   vk::raii::Device device_{nullptr};

@@ -25,6 +25,9 @@ namespace {
 __attribute__((constructor)) void spectraceKeepVulkanDriverLoaded() {
   // The handle is deliberately never closed.
   (void)dlopen("libvulkan_lvp.so", RTLD_LAZY | RTLD_LOCAL | RTLD_NODELETE);
+  // The same for the Khronos validation layer, which the loader also unloads
+  // at vkDestroyInstance (validation_test turns it on).
+  (void)dlopen("libVkLayer_khronos_validation.so", RTLD_LAZY | RTLD_LOCAL | RTLD_NODELETE);
 }
 
 }  // namespace
