@@ -68,7 +68,7 @@ echo "== fuzzing: $seconds s per target, started $started =="
 status=0
 for t in "${targets[@]}"; do
   if [[ $(cat "$work/$t.status" 2>/dev/null) == 0 ]]; then result=ok; else result=FINDING; status=1; fi
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$t.log" | tail -1)
+  runs=$(sed -n "s/^stat::number_of_executed_units: *//p" "$work/$t.log" 2>/dev/null | tail -1 || true)
   echo "$t: $result, ${runs:-?} executions, corpus $(ls "$work/corpus/$t" | wc -l) inputs"
   if [[ $result != ok ]]; then
     grep -E 'ERROR|runtime error|finding|terminate|SUMMARY|Test unit written' "$work/$t.log" | head -20 || true

@@ -205,6 +205,14 @@ FilmState readFilmState(const std::filesystem::path& file) {
     state.fingerprint = fingerprintFromJson(header.at("fingerprint"));
     for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
     const FilmFingerprint& f = state.fingerprint;
+    // The header's film shape sizes the arrays: checked against the bytes
+    // that follow before anything is allocated, so a header cannot ask for
+    // more memory than its file holds.
+    const uint64_t pixels = uint64_t(f.pixelsX) * f.pixelsY;
+    const uint64_t wordsPerPixel = uint64_t(f.bins) + (f.exactColour ? 3 : 0) + (f.weightUnits != 1 ? 1 : 0);
+    if (wordsPerPixel != 0 && pixels > (body - offset) / sizeof(uint64_t) / wordsPerPixel)
+      throw fail(fmt::format("its film ({} x {} pixels, {} bins) needs more values than the file holds", f.pixelsX,
+                             f.pixelsY, f.bins));
     SpectralHistogram& h = state.histogram;
     h = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
     h.countedBeams = header.at("counted_beams").get<uint64_t>();

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include <openssl/evp.h>
 
 #include "backend/cpu_tracer.h"
 #include "backend/vulkan_tracer.h"
@@ -89,6 +92,49 @@ TEST(FilmState, DamagedFilesAreRefusedNeverHalfRead) {
   flipped[flipped.size() / 2] ^= 0x10;
   refusedWith(flipped, "checksum");
   refusedWith("not a state at all, just some text that is long enough to hold a digest", "magic");
+}
+
+// A header whose film is far larger than the arrays after it (found by
+// film_state_fuzz) is refused before anything is allocated, not with a
+// bad_alloc: the checksum is right, only the claimed shape is wrong.
+TEST(FilmState, HeaderClaimingAHugeFilmIsRefusedBeforeAllocating) {
+  FilmState small;
+  small.fingerprint.bins = 2;
+  small.fingerprint.pixelsX = small.fingerprint.pixelsY = 1;
+  small.ranges = {{0, 1}};
+  small.histogram = SpectralHistogram(1, 1, 2);
+  const fs::path file = tempFile("huge.state");
+  writeFilmState(file, small);
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // Same-length edits of the header: 1 x 1 pixels become 65535 x 65535, and
+  // 2 bins 99999 (the file keeps its 2 counts).
+  for (auto [from, to] : {std::pair<std::string, std::string>{"\"pixels_x\":1,", "\"pixels_x\":65535,"},
+                          {"\"pixels_y\":1,", "\"pixels_y\":65535,"}, {"\"bins\":2,", "\"bins\":99999,"}}) {
+    const size_t at = bytes.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    bytes.replace(at, from.size(), to);
+  }
+  // The header grew by 12 bytes: re-state its length, then re-sign.
+  uint32_t headerBytes = 0;
+  std::memcpy(&headerBytes, bytes.data() + 12, 4);
+  const uint32_t grown = headerBytes + 12;
+  std::memcpy(bytes.data() + 12, &grown, 4);
+  bytes.resize(bytes.size() - 32);
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr);
+  bytes.append(reinterpret_cast<const char*>(digest), length);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  try {
+    readFilmState(file);
+    ADD_FAILURE() << "accepted a state whose film does not fit its file";
+  } catch (const FilmStateError& e) {
+    EXPECT_NE(std::string(e.what()).find("more values than the file holds"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FilmState, StatesOfOtherScenesSeedsOrOverlappingBeamsAreRefused) {
