@@ -50,6 +50,10 @@ END_BINDING();
 START_BINDING(RngCheckBinding)
   kBindingRngWords = 0
 END_BINDING();
+START_BINDING(CeilingBinding)  // the bench's ceiling kernel (shaders/ceiling.comp)
+  kBindingCeilingCdf = 0,      // float CDF of the spectrum, one entry per node
+  kBindingCeilingHistogram = 1 // uint per pixel-bin
+END_BINDING();
 
 // The resolve pass sums this many bins per loop iteration, written out in
 // resolve.comp (llvmpipe stops a loop after 65535 iterations).
@@ -86,7 +90,20 @@ START_BINDING(SpecConstantId)
   kSpecExactColour = 5,
   kSpecAim = 6,
   kSpecHistogramChunks = 7,  // histogram buffers in use; kMaxHistogramChunks + 1: decided at run time
-  kSpecCountBeams = 8        // 0: every weight is one unit, so the host sums the bins instead
+  kSpecCountBeams = 8,       // 0: every weight is one unit, so the host sums the bins instead
+  kSpecProfileStage = 9      // bench only (shaders/profile.h): kProfileStageFull runs the whole kernel
+END_BINDING();
+// Stages of the bench's cost profile (shaders/profile.h), each adding one
+// part of the kernel to the one before.
+START_BINDING(ProfileStage)
+  kProfileStagePhilox = 0,     // the beam's two Philox blocks
+  kProfileStageLight = 1,      // + light choice and its record
+  kProfileStageWavelength = 2, // + wavelength and its bin
+  kProfileStageEmission = 3,   // + origin and direction (unaimed)
+  kProfileStageSensor = 4,     // + sensor intersection
+  kProfileStageCounting = 5,   // + the bin's counter (exact colour off)
+  kProfileStageColour = 6,     // + exact colour
+  kProfileStageFull = 7        // the whole kernel: + aiming and weights
 END_BINDING();
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
@@ -269,6 +286,25 @@ struct RngCheckPush {
   uint block;
 };
 
+// The bench's ceiling kernel (shaders/ceiling.comp, host/bench/ceiling.cpp):
+// a disk light facing a bare sensor at z = 0, no exactness work.
+struct CeilingPush {
+  uint beamBase;        // first beam's index (32 bit: the hash's input)
+  uint beamCount;
+  uint beamsPerRow;     // invocations per row of the 2D dispatch
+  uint cdfCount;        // CDF nodes, lambdaMin + i * nmPerNode
+  float lambdaMin;
+  float nmPerNode;
+  float binsPerNm;
+  uint bins;
+  float diskRadius;     // metres, centred on the axis
+  float diskDistance;   // from the sensor
+  float sensorHalfSize; // square sensor
+  float pixelsPerMetre;
+  uint pixels;          // per side
+  uint padding0;
+};
+
 #ifdef __cplusplus
 // Each pipeline's binding list: the one table its descriptor set layout
 // is built from (host/backend), beside the typed enums above.
@@ -280,6 +316,7 @@ inline constexpr BindingSlot kTraceBindings[] = {
     {kBindingTraceConstants, 1}, {kBindingLights, 1},      {kBindingSpectralIntervals, 1},
     {kBindingHistogram, kMaxHistogramChunks},               {kBindingBeamRecords, 1},
     {kBindingCmfTable, 1},       {kBindingTraceStats, 1},       {kBindingAliasColumns, 1}};
+inline constexpr BindingSlot kCeilingBindings[] = {{kBindingCeilingCdf, 1}, {kBindingCeilingHistogram, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},
                                                    {kBindingResolvedPixels, 1},
@@ -295,6 +332,7 @@ static_assert(sizeof(TracePush) == 16);
 static_assert(sizeof(ResolveConstants) == 68);
 static_assert(sizeof(ResolvedPixel) == 28);
 static_assert(sizeof(RngCheckPush) == 24);
+static_assert(sizeof(CeilingPush) == 56);
 static_assert(sizeof(ResolvePush) == 8);
 }  // namespace spectrace::device
 

@@ -22,6 +22,8 @@ layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no lig
 // Always set from the film (not a scene feature).
 layout(constant_id = kSpecHistogramChunks) const uint histogramChunks = kMaxHistogramChunks + 1u;
 layout(constant_id = kSpecCountBeams) const uint countBeamsOnDevice = 1u;
+// Bench only: the kernel cut after a stage (profile.h); the default is the whole kernel.
+layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
 #define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
@@ -85,6 +87,11 @@ void addCount(uint chunk, uint index, uint64_t amount) {
 }
 
 #include "trace.h"
+#include "profile.h"
+
+FN bool traceAndCountOrProfileBeam(uint64_t beamIndex) {
+  return profileStage == kProfileStageFull ? traceAndCountBeam(beamIndex) : profileBeam(beamIndex, profileStage);
+}
 
 // Counted beams of this workgroup, added to stats with one atomic. Not
 // needed when every counted beam adds one unit to its bin: the host sums the
@@ -110,7 +117,7 @@ void main() {
       uint pixel = cell.y * constants.pixelsX + cell.x;
       beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(weightUnitsOf(ratio, spareUniform)), 0u)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
-    } else if (traceAndCountBeam(beamIndex) && countBeamsOnDevice != 0u) {
+    } else if (traceAndCountOrProfileBeam(beamIndex) && countBeamsOnDevice != 0u) {
       atomicAdd(groupCounted, 1u);
     }
   }

@@ -9,12 +9,15 @@
 
 namespace spectrace {
 
-CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads)
+CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
+      profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageFull)),
       counters_(plan.film.storedCounterCount(), 0) {
   // One chunk holds every stored pixel.
   plan_.device.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
+  // The profile's counting stage counts bins only (shaders/profile.h).
+  if (profileStage_ <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
 }
 
 std::string CpuTracer::deviceName() const { return fmt::format("CPU reference, {} threads", threads_); }
@@ -40,7 +43,11 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
         break;
       }
       const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
-      for (uint64_t i = block * kBlock; i < end; ++i) countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
+      if (profileStage_ == device::kProfileStageFull)
+        for (uint64_t i = block * kBlock; i < end; ++i) countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
+      else
+        for (uint64_t i = block * kBlock; i < end; ++i)
+          countedHere += local.profileBeam(firstBeam + i, profileStage_) ? 1 : 0;
     }
     counted.fetch_add(countedHere, std::memory_order_relaxed);
   };

@@ -14,7 +14,9 @@ namespace spectrace {
 class CpuTracer final : public Tracer {
  public:
   // threads = 0: all hardware threads.
-  explicit CpuTracer(const CompiledScene& plan, unsigned threads = 0);
+  // profileStage: the bench's cost profile (shaders/profile.h); the default traces the whole kernel.
+  explicit CpuTracer(const CompiledScene& plan, unsigned threads = 0,
+                     uint32_t profileStage = device::kProfileStageFull);
 
   DeviceKind kind() const override { return DeviceKind::Cpu; }
   std::string deviceName() const override;
@@ -28,6 +30,7 @@ class CpuTracer final : public Tracer {
  private:
   CompiledScene plan_;
   unsigned threads_;
+  uint32_t profileStage_;
   std::vector<uint64_t> counters_;  // the stored pixels' counters, one chunk
   uint64_t countedBeams_ = 0;
 };

@@ -103,8 +103,10 @@ std::string Device::pipelineCachePath() const { return vulkan_ ? vulkan_->pipeli
 uint64_t Device::bufferAllocations() const { return buffers_->allocations(); }
 
 std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const TracerOptions& options) const {
-  if (vulkan_) return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures, buffers_);
-  return std::make_unique<CpuTracer>(plan, options.cpuThreads);
+  if (vulkan_)
+    return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures, buffers_,
+                                          options.profileStage);
+  return std::make_unique<CpuTracer>(plan, options.cpuThreads, options.profileStage);
 }
 
 }  // namespace spectrace

@@ -24,6 +24,7 @@ struct TracerOptions {
   uint32_t workgroupSize = 64;                     // Vulkan
   uint32_t specialisedFeatures = kSpecialiseAll;   // Vulkan: SpecialisedFeature bits
   unsigned cpuThreads = 0;                         // CPU: 0 = all hardware threads
+  uint32_t profileStage = device::kProfileStageFull;  // bench only: the kernel cut after a stage (shaders/profile.h)
 };
 
 // A device to open: a Vulkan device by index, or the CPU reference.

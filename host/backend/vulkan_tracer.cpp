@@ -82,8 +82,10 @@ DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uin
 
 // The scene specialisation constants of trace_beams.comp (device_shared.h,
 // SpecConstantId): the scene's value for each feature in `features`, else
-// the general pipeline's (decide at run time).
-std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan, uint32_t features) {
+// the general pipeline's (decide at run time); and the profile stage (the
+// profile's counting stage has exact colour off).
+std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan, uint32_t features,
+                                                       uint32_t profileStage) {
   uint32_t types = 0;
   bool aimed = false;
   for (const auto& light : plan.device.lights) {
@@ -94,8 +96,11 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
   return {{device::kSpecLightTypes, pick(kSpecialiseLightTypes, types, device::kAllLightTypes)},
           {device::kSpecSelectLight, pick(kSpecialiseLightChoice, plan.device.lights.size() > 1 ? 1u : 0u, 1u)},
           {device::kSpecPinhole, pick(kSpecialisePinhole, plan.device.constants.apertureDistance > 0.0f ? 1u : 0u, 2u)},
-          {device::kSpecExactColour, pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},
-          {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)}};
+          {device::kSpecExactColour, profileStage <= device::kProfileStageCounting
+                                         ? 0u
+                                         : pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},
+          {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)},
+          {device::kSpecProfileStage, std::min<uint32_t>(profileStage, device::kProfileStageFull)}};
 }
 
 // Whether the trace pass counts counted beams itself: only when beams carry
@@ -168,12 +173,13 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
 }
 
 VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize,
-                           uint32_t specialisedFeatures, std::shared_ptr<TracerBufferPool> buffers)
+                           uint32_t specialisedFeatures, std::shared_ptr<TracerBufferPool> buffers,
+                           uint32_t profileStage)
     : context_(context),
       buffers_(poolOrOwn(std::move(buffers))),
       plan_(plan),
       workgroupSize_(workgroupSize),
-      traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures)),
+      traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures, profileStage)),
       split_((checkSceneFitsDevice(plan, context.info().maxStorageBufferRange, context.info().deviceLocalHeapBytes,
                                    context.info().name),
               HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
@@ -191,6 +197,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
                        sizeof(device::ResolvePush), {{device::kSpecWorkgroupSize, workgroupSize}}),
       timestamps_(context, 2) {
   plan_.device.constants.pixelsPerChunk = split_.pixelsPerChunk;
+  if (profileStage <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
   traceConstants_.upload(&plan_.device.constants, sizeof(plan_.device.constants));
   const uint64_t pixelBytes = uint64_t(plan.film.countersPerPixel()) * sizeof(uint64_t);
   for (uint32_t c = 0; c < split_.chunkCount; ++c) {

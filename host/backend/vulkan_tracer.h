@@ -73,8 +73,11 @@ class VulkanTracer final : public Tracer {
   // others are decided at run time. kSpecialiseNone is the general pipeline.
   // `buffers`: where its device buffers come from and go back to (a
   // device's pool, shared by its tracers); null: a pool of its own.
+  // `profileStage`: the bench's cost profile (shaders/profile.h); the
+  // default traces the whole kernel.
   VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize = 64,
-               uint32_t specialisedFeatures = kSpecialiseAll, std::shared_ptr<TracerBufferPool> buffers = nullptr);
+               uint32_t specialisedFeatures = kSpecialiseAll, std::shared_ptr<TracerBufferPool> buffers = nullptr,
+               uint32_t profileStage = device::kProfileStageFull);
   ~VulkanTracer() override;
   VulkanTracer(const VulkanTracer&) = delete;
   VulkanTracer& operator=(const VulkanTracer&) = delete;

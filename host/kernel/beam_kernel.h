@@ -68,6 +68,7 @@ class BeamKernel {
   // The shared functions are public so tests can probe them one by one.
 #define SPECTRACE_SINGLE_CHUNK true  // `counters` holds every stored pixel
 #include "trace.h"
+#include "profile.h"  // the bench's cost profile
 };
 
 static_assert(KernelIncluder<BeamKernel>);

@@ -131,7 +131,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   checkFilmFitsMemory(scene, plan, device.kind(), options.spectral);
   std::unique_ptr<Tracer> tracer;
   try {
-    tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads});
+    tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads,
+                                                     options.profileStage});
   } catch (const SceneError& e) {  // the device's limits, named by field; add the file
     throw SceneError(scenePrefix(scene) + e.what());
   }

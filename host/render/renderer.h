@@ -27,6 +27,7 @@ struct RenderOptions {
   // GPU: the scene features the trace pipeline is compiled for
   // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
   uint32_t specialisedFeatures = kSpecialiseAll;
+  uint32_t profileStage = device::kProfileStageFull;  // bench only: the kernel cut after a stage (shaders/profile.h)
   // Add the spectral block (one spectral irradiance per bin of the full
   // spectrum) to the image; error.E is always added.
   bool spectral = false;
