@@ -93,6 +93,65 @@ bool plotColourBins(const std::filesystem::path& dir, const BenchReport& report)
   return runGnuplot(dir / "colour_bins.gp");
 }
 
+void writeProfileCsv(const std::filesystem::path& file, const std::vector<ProfileRow>& rows) {
+  std::ofstream csv(file);
+  csv << "device,device_name,beams,stage,stage_name,seconds,ns_per_beam,increment_ns_per_beam,share_of_full\n";
+  for (const auto& r : rows) {
+    const double full = r.nsPerBeam(device::kProfileStageFull);
+    for (size_t s = 0; s < r.stageSeconds.size(); ++s) {
+      const double increment = r.nsPerBeam(s) - (s ? r.nsPerBeam(s - 1) : 0.0);
+      csv << fmt::format("{},\"{}\",{},{},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g}\n", deviceKindName(r.device), r.deviceName,
+                         r.beams, s, kProfileStageNames[s], r.stageSeconds[s], r.nsPerBeam(s), increment, increment / full);
+    }
+  }
+}
+
+void writeCeilingCsv(const std::filesystem::path& file, const std::vector<CeilingRow>& rows) {
+  std::ofstream csv(file);
+  csv << "device,device_name,beams,ceiling_s,spectrace_s,ceiling_beams_per_s,spectrace_beams_per_s,spectrace_to_ceiling,"
+         "ceiling_hits\n";
+  for (const auto& r : rows)
+    csv << fmt::format("{},\"{}\",{},{:.6g},{:.6g},{:.6g},{:.6g},{:.4f},{}\n", deviceKindName(r.device), r.deviceName, r.beams,
+                       r.ceilingSeconds, r.spectraceSeconds, double(r.beams) / r.ceilingSeconds,
+                       double(r.beams) / r.spectraceSeconds, r.ratio(), r.ceilingHits);
+}
+
+void writeProfileSection(std::ofstream& md, const BenchReport& report) {
+  md << "## Profile: where a beam's time goes, and the ceiling\n\n";
+  if (!report.profile.empty()) {
+    md << "The throughput scene (exact colour on) with the kernel cut after each stage (`shaders/profile.h`, "
+          "specialisation constant `kSpecProfileStage`): each stage adds one part of the kernel to the one "
+          "before. Up to \"+ exact colour\" beams are emitted unaimed with unit weight; \"+ counting\" counts "
+          "the bin only. Device time of the trace pass on Vulkan, wall time of the trace on the CPU, each the "
+          "least of 3 runs taken in turn, all in this run. The increment is a stage's own cost; its share is "
+          "of the full kernel.\n\n";
+    for (const auto& r : report.profile) {
+      const double full = r.nsPerBeam(device::kProfileStageFull);
+      md << fmt::format("{} ({} beams per stage):\n\n", r.deviceName, r.beams);
+      md << "| stage | ns/beam | increment ns/beam | share of full |\n| --- | ---: | ---: | ---: |\n";
+      for (size_t s = 0; s < r.stageSeconds.size(); ++s) {
+        const double increment = r.nsPerBeam(s) - (s ? r.nsPerBeam(s - 1) : 0.0);
+        md << fmt::format("| {} | {:.2f} | {:+.2f} | {:.1f}% |\n", kProfileStageNames[s], r.nsPerBeam(s), increment,
+                          100.0 * increment / full);
+      }
+      md << "\n";
+    }
+    md << "All rows: [bench/profile.csv](bench/profile.csv).\n\n";
+  }
+  if (!report.ceiling.empty()) {
+    md << "The ceiling: the same scene's work with no exactness guarantees (`shaders/ceiling.comp` on Vulkan, "
+          "plain scalar C++ on the CPU in `host/bench/ceiling.cpp`): a PCG hash of the beam index for random "
+          "numbers, the wavelength by a float CDF search over D65 at 1 nm, cosine-weighted disk emission, the "
+          "sensor plane, one 32-bit atomic per counted beam. Against spectrace's full kernel with exact colour "
+          "on; device time against device time on Vulkan, wall against wall on the CPU; same run.\n\n";
+    md << "| device | beams | ceiling Mbeam/s | spectrace Mbeam/s | spectrace : ceiling |\n| --- | ---: | ---: | ---: | ---: |\n";
+    for (const auto& r : report.ceiling)
+      md << fmt::format("| {} | {} | {:.2f} | {:.2f} | {:.3f} |\n", r.deviceName, r.beams,
+                        double(r.beams) / r.ceilingSeconds * 1e-6, double(r.beams) / r.spectraceSeconds * 1e-6, r.ratio());
+    md << "\n[bench/ceiling.csv](bench/ceiling.csv).\n\n";
+  }
+}
+
 }  // namespace
 
 void writeBenchReport(const std::filesystem::path& dir, const BenchReport& report) {
@@ -100,6 +159,8 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
   std::filesystem::create_directories(data);
   writeSweepCsv(data / "error_sweep.csv", report.sweep);
   writeColourCsv(data / "colour_bins.csv", report.colour);
+  if (!report.profile.empty()) writeProfileCsv(data / "profile.csv", report.profile);
+  if (!report.ceiling.empty()) writeCeilingCsv(data / "ceiling.csv", report.ceiling);
   {
     std::vector<SweepRow> aimRows;
     for (const auto& a : report.aim) aimRows.insert(aimRows.end(), {a.aimed, a.analog});
@@ -153,6 +214,8 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
                             (double(a.beams) / a.wallSeconds) / (double(b.beams) / b.wallSeconds));
     md << "\n";
   }
+
+  if (!report.profile.empty() || !report.ceiling.empty()) writeProfileSection(md, report);
 
   if (!report.specialisation.empty()) {
     md << "## Pipelines specialised to the scene\n\n";

@@ -79,6 +79,40 @@ struct BatchOverheadRow {
   double overhead() const { return batchWallSeconds / traceDeviceSeconds - 1.0; }
 };
 
+// The cost profile of the kernel on the throughput scene: its time with
+// the kernel cut after each stage (shaders/profile.h), on one device; device
+// time on Vulkan, wall time of the trace on the CPU, each the least of 3
+// runs taken in turn.
+struct ProfileRow {
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
+  uint64_t beams = 0;
+  std::vector<double> stageSeconds;  // one per ProfileStage, in order
+  double nsPerBeam(size_t stage) const { return stageSeconds[stage] / double(beams) * 1e9; }
+};
+// The stages' names, in ProfileStage order (each adds one to the one before),
+// then the default kernel (colour from bins) in place of per-beam colour.
+inline const char* const kProfileStageNames[] = {"Philox",
+                                                 "+ light choice",
+                                                 "+ wavelength",
+                                                 "+ emission",
+                                                 "+ sensor",
+                                                 "+ counting (bins)",
+                                                 "+ exact colour (per beam)",
+                                                 "+ aiming and weights (full kernel, per-beam colour)",
+                                                 "default: full kernel, colour from bins"};
+
+// spectrace's full kernel (exact colour on) against the ceiling kernel
+// (bench/ceiling.h) on the throughput scene, one device, same run and measure.
+struct CeilingRow {
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
+  uint64_t beams = 0;
+  double ceilingSeconds = 0.0, spectraceSeconds = 0.0;
+  uint64_t ceilingHits = 0;
+  double ratio() const { return ceilingSeconds / spectraceSeconds; }  // spectrace : ceiling, beams/s
+};
+
 struct BenchReport {
   std::string date;       // UTC, ISO 8601
   std::string machine;    // CPU model and cores
@@ -90,6 +124,8 @@ struct BenchReport {
   std::vector<PipelineCacheRow> pipelineCache;
   std::vector<BatchProcessRow> batchProcesses;
   std::vector<BatchOverheadRow> batchOverhead;
+  std::vector<ProfileRow> profile;
+  std::vector<CeilingRow> ceiling;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
 };

@@ -1,6 +1,7 @@
 // `spectrace bench`: run time against error. Throughput on a fixed scene,
 // an error-vs-time sweep over the reference scenes (exact answers), and the
 // colour error of binning, on every device, with ratios taken in one run.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -21,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/ceiling.h"
 #include "bench/error_bench.h"
 #include "bench/report.h"
 #include "cli/cli_numbers.h"
@@ -29,6 +31,7 @@
 #include "scene/scene.h"
 #include "scene/scene_builders.h"
 #include "session/session.h"
+#include "vulkan/context.h"
 
 namespace spectrace::cli {
 namespace {
@@ -114,6 +117,9 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
 // shared machine) does not favour the variants measured first.
 struct BestTimes {
   double traceSeconds = INFINITY, resolveSeconds = INFINITY;
+  double traceWallSeconds = INFINITY;
+  // Device time on a Vulkan device, wall time of the trace on the CPU.
+  double traceSecondsOn(DeviceKind kind) const { return kind == DeviceKind::Vulkan ? traceSeconds : traceWallSeconds; }
 };
 std::vector<BestTimes> interleavedBest(size_t variants, int rounds, const std::function<RenderResult(size_t)>& run) {
   std::vector<BestTimes> best(variants);
@@ -122,10 +128,81 @@ std::vector<BestTimes> interleavedBest(size_t variants, int rounds, const std::f
       const RenderResult result = run(v);
       best[v].traceSeconds = std::min(best[v].traceSeconds, result.traceDeviceSeconds);
       best[v].resolveSeconds = std::min(best[v].resolveSeconds, result.resolveDeviceSeconds);
+      best[v].traceWallSeconds = std::min(best[v].traceWallSeconds, result.traceWallSeconds);
     }
   return best;
 }
 constexpr int kTimingRounds = 3;
+
+// The kernel's cost by stage on the throughput scene (shaders/profile.h),
+// on every device: each stage's time, its increment and share of the full
+// kernel's.
+std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vector<DeviceSpec>& devices,
+                                   const std::atomic<bool>& cancel) {
+  const Scene scene = throughputScene();
+  std::vector<ProfileRow> rows;
+  fmt::print("\nProfile: the kernel cut after each stage, throughput scene, {} beams per stage "
+             "(device time on Vulkan, wall time on the CPU; least of {})\n",
+             command.profileBeams, kTimingRounds);
+  for (const auto& device : devices) {
+    const auto opened = Device::open(device);
+    ProfileRow row{device.kind, device.name, command.profileBeams, {}};
+    // The stages with per-beam colour (the reference path, so the exact
+    // colour stage has work), then the default: the full kernel with colour
+    // from the bins (compile/shortcuts.h).
+    const auto best = interleavedBest(device::kProfileStageFull + 2, kTimingRounds, [&](size_t stage) {
+      return timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
+        o.cpuThreads = command.threads;
+        o.plan.exactColour = true;
+        o.plan.colourFromBins = stage > device::kProfileStageFull;
+        o.profileStage = uint32_t(std::min<size_t>(stage, device::kProfileStageFull));
+      });
+    });
+    for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.kind));
+    fmt::print("{}\n{:<36} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", "ns/beam", "increment ns/beam", "share of full");
+    const double full = row.nsPerBeam(device::kProfileStageFull);
+    for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
+      const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
+      fmt::print("{:<36} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", kProfileStageNames[s], row.nsPerBeam(s), increment,
+                 100.0 * increment / full);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// spectrace's full kernel (exact colour on) against the ceiling kernel on
+// the throughput scene, on every device, in turn, least of 3 each.
+std::vector<CeilingRow> runCeiling(const BenchCommand& command, const std::vector<DeviceSpec>& devices,
+                                   const std::atomic<bool>& cancel) {
+  const Scene scene = throughputScene();
+  const CeilingScene ceilingScene = throughputCeilingScene();
+  std::vector<CeilingRow> rows;
+  fmt::print("\nCeiling: a kernel with no exactness work against spectrace (exact colour on), {} beams "
+             "(device time on Vulkan, wall time on the CPU; least of {})\n",
+             command.profileBeams, kTimingRounds);
+  fmt::print("{:<44} {:>16} {:>18} {:>20}\n", "device", "ceiling Mbeam/s", "spectrace Mbeam/s", "spectrace : ceiling");
+  for (const auto& device : devices) {
+    const auto opened = Device::open(device);
+    const auto context = device.kind == DeviceKind::Vulkan ? vk_util::Context::create(uint32_t(device.vulkanIndex)) : nullptr;
+    CeilingRow row{device.kind, device.name, command.profileBeams, INFINITY, INFINITY, 0};
+    for (int round = 0; round < kTimingRounds && !cancel.load(); ++round) {
+      const CeilingResult ceiling = context ? traceCeilingOnVulkan(*context, ceilingScene, row.beams)
+                                            : traceCeilingOnCpu(ceilingScene, row.beams, command.threads);
+      row.ceilingSeconds = std::min(row.ceilingSeconds, ceiling.seconds);
+      row.ceilingHits = ceiling.hits;
+      const RenderResult result = timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
+        o.cpuThreads = command.threads;
+        o.plan.exactColour = true;
+      });
+      row.spectraceSeconds = std::min(row.spectraceSeconds, context ? result.traceDeviceSeconds : result.traceWallSeconds);
+    }
+    fmt::print("{:<44} {:>16.2f} {:>18.2f} {:>20.3f}\n", row.deviceName, double(row.beams) / row.ceilingSeconds * 1e-6,
+               double(row.beams) / row.spectraceSeconds * 1e-6, row.ratio());
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 // General against specialised trace pipelines, device time, same run.
 std::vector<SpecialisationRow> runSpecialisation(const std::vector<DeviceSpec>& devices,
@@ -440,13 +517,15 @@ std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
 void selectBenchSections(BenchCommand& command, const std::string& list) {
   const std::vector<std::pair<std::string, bool*>> sections = {
       {"throughput", &command.throughput}, {"specialisation", &command.specialisation}, {"aim", &command.aim},
-      {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour}};
+      {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour},
+      {"profile", &command.profile},       {"ceiling", &command.ceiling}};
   for (const auto& [name, flag] : sections) *flag = false;
   std::stringstream items(list);
   for (std::string item; std::getline(items, item, ',');) {
     const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == item; });
     if (it == sections.end())
-      throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour)",
+      throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour, "
+                                   "profile, ceiling)",
                                    list, item));
     *it->second = true;
   }
@@ -476,6 +555,8 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.batchOverhead = runBatchOverhead(report.devices, lampScene, cancel);
   }
   if (command.batch && command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
+  if (command.profile) report.profile = runProfile(command, report.devices, cancel);
+  if (command.ceiling) report.ceiling = runCeiling(command, report.devices, cancel);
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);

@@ -86,7 +86,13 @@ struct BenchCommand {
   bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true;
   bool batch = true;          // batch section: one batch against many processes, overhead of large jobs
   bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
+  bool profile = true;        // the kernel's cost by stage (shaders/profile.h)
+  bool ceiling = true;        // spectrace against the ceiling kernel (bench/ceiling.h)
+  uint64_t profileBeams = uint64_t(1) << 23;  // per stage and device, and per ceiling run
 };
+// --only: runs only the comma-separated sections (throughput, specialisation,
+// aim, batch, sweep, colour, profile, ceiling). UsageError for an unknown name.
+void selectBenchSections(BenchCommand& command, const std::string& list);
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
 // --only: keeps only the named sections (comma-separated: throughput,
 // specialisation, aim, batch, sweep, colour); throws UsageError for others.

@@ -130,7 +130,10 @@ int main(int argc, char** argv) {
   benchCmd->add_option_function<std::string>(
       "--only",
       [&](const std::string& list) { selectBenchSections(bench, list); },
-      "Run only these sections (comma-separated): throughput, specialisation, aim, batch, sweep, colour");
+      "Run only these sections (comma-separated): throughput, specialisation, aim, batch, sweep, colour, profile, ceiling");
+  benchCmd->add_option_function<std::string>(
+      "--profile-beams", [&](const std::string& v) { bench.profileBeams = parseU64("--profile-beams", v, 1); },
+      "Beams per stage and device in the profile and ceiling sections");
 
   try {
     app.parse(argc, argv);
