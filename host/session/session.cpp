@@ -293,6 +293,7 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
   auto write = [result = std::move(result), scene = job.scene, output, png = job.png, spectral = options.spectral,
                 aim = options.plan.aim, seed = options.seed, firstBeam = options.firstBeam, writeState, survived,
                 lock]() mutable -> RenderResult {
+    const auto held = std::move(lock);  // released when this write ends, not when the future goes
     try {
       const ResolveParameters parameters = resolveParametersFor(scene, result.plan, result.beamsTraced);
       addHostChannels(result.image, result.histogram, result.plan, parameters, result.beamsTraced, spectral);
