@@ -97,14 +97,9 @@ if [[ -z ${XDG_RUNTIME_DIR:-} ]]; then
 fi
 start=$SECONDS
 
-# Runs a build step quietly into a log; on failure shows its tail and stops.
-run_logged() {
-  local log=$1; shift
-  if ! "$@" > "$log" 2>&1; then
-    tail -n 40 "$log" >&2
-    die "failed: $* (log: $log)"
-  fi
-}
+# run_logged and build_base_spectrace.
+# shellcheck source=lib/base_build.sh
+source "$root/scripts/lib/base_build.sh"
 
 # 1. The working tree's binaries, in build/.
 echo "check_identical_images: building the working tree's spectrace and exr_pixels_equal in build/"
@@ -120,28 +115,7 @@ compare=$root/build/exr_pixels_equal
 
 # BASE_REV's spectrace, in a detached worktree at build-base/src (reused).
 echo "check_identical_images: building spectrace at $base_rev (${base_sha:0:12}) in build-base/"
-git worktree prune
-if [[ -d $src ]] && git worktree list --porcelain | grep -qxF "worktree $src"; then
-  # Ours: move it to BASE_REV (it is scratch, so local edits are dropped).
-  run_logged "$work/logs/base-checkout.log" git -C "$src" checkout -q --force --detach "$base_sha"
-  git -C "$src" clean -q -f -d
-else
-  rm -rf "$src"
-  run_logged "$work/logs/base-checkout.log" git worktree add -q --detach "$src" "$base_sha"
-fi
-# Same build type and compiler as build/, tests off (only spectrace is built).
-cache_value() { sed -n "s/^$1:[A-Z]*=//p" build/CMakeCache.txt | head -n 1; }
-base_cmake_args=(-DCMAKE_BUILD_TYPE="$(cache_value CMAKE_BUILD_TYPE)" -DBUILD_TESTING=OFF)
-[[ -n $(cache_value CMAKE_CXX_COMPILER) ]] && base_cmake_args+=(-DCMAKE_CXX_COMPILER="$(cache_value CMAKE_CXX_COMPILER)")
-[[ -n $(cache_value CMAKE_CXX_FLAGS) ]] && base_cmake_args+=(-DCMAKE_CXX_FLAGS="$(cache_value CMAKE_CXX_FLAGS)")
-[[ -n $(cache_value SPECTRACE_SANITIZE) ]] && base_cmake_args+=(-DSPECTRACE_SANITIZE="$(cache_value SPECTRACE_SANITIZE)")
-run_logged "$work/logs/base-configure.log" cmake -S "$src" -B "$work/build" "${base_cmake_args[@]}"
-run_logged "$work/logs/base-build.log" cmake --build "$work/build" -j "$jobs" --target spectrace
-base_bin=$work/build/spectrace
-if [[ ! -x $base_bin ]]; then  # older layouts
-  base_bin=$(find "$work/build" -name spectrace -type f -perm -u+x -print -quit)
-  [[ -n $base_bin ]] || die "no spectrace binary under $work/build"
-fi
+build_base_spectrace "$base_sha"
 build_seconds=$((SECONDS - start))
 
 # 2. The scenes: every JSON under scenes/ with a "lights" key, not scenes/batch/.
