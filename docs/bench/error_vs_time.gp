@@ -10,260 +10,260 @@ set title 'point_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_0 << EOD
-0.00224998 2.45367
-0.00490898 0.800998
-0.0210249 0.252205
-0.0871115 0.0789241
-0.844957 0.0249586
-8.15766 0.0080504
+0.0014153 2.45367
+0.00180762 0.800998
+0.00519195 0.252205
+0.038427 0.0789241
+0.452794 0.0249586
+3.14231 0.0080504
 EOD
 $d1_0 << EOD
-0.000654447 2.45367
-0.00154507 0.800998
-0.0133282 0.252205
-0.0863233 0.0789241
-0.818588 0.0249586
-8.02538 0.0080504
+0.000237512 2.45367
+0.000779927 0.800998
+0.00644809 0.252205
+0.0501522 0.0789241
+0.496773 0.0249586
+4.95161 0.0080504
 EOD
-plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0080504*(x/8.15766)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0080504*(x/3.14231)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'point_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_1 << EOD
-0.0019977 3.92447
-0.00248612 1.32748
-0.00965927 0.424239
-0.0810333 0.125531
-0.982518 0.0389811
-7.81879 0.0125417
+0.00263459 3.92447
+0.00342302 1.32748
+0.00932945 0.424239
+0.0345925 0.125531
+0.407565 0.0389811
+3.60513 0.0125417
 EOD
 $d1_1 << EOD
-0.000643816 3.92447
-0.00137835 1.32748
-0.00939175 0.424239
-0.0786179 0.125531
-0.767286 0.0389811
-7.43058 0.0125417
+0.000300466 3.92447
+0.000834478 1.32748
+0.00551136 0.424239
+0.0485646 0.125531
+0.512202 0.0389811
+4.89832 0.0125417
 EOD
-plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0125417*(x/7.81879)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0125417*(x/3.60513)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_2 << EOD
-0.00155106 1.50901
-0.00272009 0.473034
-0.0132599 0.145537
-0.111906 0.0485828
-1.32545 0.0153916
-10.782 0.00474422
+0.00190908 1.50901
+0.00189005 0.473034
+0.00706644 0.145537
+0.0705923 0.0485828
+0.554368 0.0153916
+4.06485 0.00474422
 EOD
 $d1_2 << EOD
-0.000581459 1.50901
-0.00189835 0.473034
-0.01368 0.145537
-0.114528 0.0485828
-1.11805 0.0153916
-11.0947 0.00474422
+0.000240126 1.50901
+0.00101653 0.473034
+0.00758912 0.145537
+0.0629001 0.0485828
+0.621318 0.0153916
+6.63744 0.00474422
 EOD
-plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00474422*(x/10.782)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00474422*(x/4.06485)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_3 << EOD
-0.00120282 2.01884
-0.00227561 0.618676
-0.0122395 0.192406
-0.104973 0.0605442
-1.00806 0.0184
-7.62827 0.00625028
+0.000981938 2.01884
+0.00134804 0.618676
+0.00443158 0.192406
+0.0391923 0.0605442
+0.468495 0.0184
+4.18292 0.00625028
 EOD
 $d1_3 << EOD
-0.000458787 2.01884
-0.00161271 0.618676
-0.0118991 0.192406
-0.104099 0.0605442
-1.02622 0.0184
-10.3103 0.00625028
+0.000205555 2.01884
+0.00114391 0.618676
+0.00936436 0.192406
+0.0681813 0.0605442
+0.721306 0.0184
+11.9655 0.00625028
 EOD
-plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00625028*(x/7.62827)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00625028*(x/4.18292)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'furnace' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_4 << EOD
-0.00109529 1.95744
-0.00129842 0.691132
-0.0052461 0.234013
-0.0468026 0.0714504
-0.558591 0.0203218
-4.64015 0.00700781
+0.000888448 1.95744
+0.000890802 0.691132
+0.00400473 0.234013
+0.035757 0.0714504
+0.399344 0.0203218
+3.17565 0.00700781
 EOD
 $d1_4 << EOD
-0.000394285 1.95744
-0.00136483 0.691132
-0.00873828 0.234013
-0.0703796 0.0714504
-0.670774 0.0203218
-6.69851 0.0070078
+0.000152577 1.95744
+0.00086215 0.691132
+0.0102847 0.234013
+0.1117 0.0714504
+1.13773 0.0203218
+10.1123 0.0070078
 EOD
-plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00700781*(x/4.64015)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00700781*(x/3.17565)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_d65' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_5 << EOD
-0.000992155 0.663477
-0.00279184 0.205715
-0.0158301 0.0652183
-0.101341 0.0189764
-1.09598 0.00626652
-9.74188 0.00201212
+0.000811123 0.663477
+0.00124393 0.205715
+0.00627891 0.0652183
+0.0698572 0.0189764
+0.473142 0.00626652
+4.73786 0.00201212
 EOD
 $d1_5 << EOD
-0.000421066 0.663477
-0.001419 0.205715
-0.0120343 0.0652183
-0.113828 0.0189764
-1.13755 0.00626653
-11.4212 0.00201212
+0.000144915 0.663477
+0.000873496 0.205715
+0.00626518 0.0652183
+0.0546542 0.0189764
+0.556873 0.00626653
+5.71196 0.00201212
 EOD
-plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/9.74188)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/4.73786)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_a' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_6 << EOD
-0.000703499 0.663477
-0.00169714 0.205715
-0.010563 0.0652183
-0.0995194 0.0189764
-1.09184 0.00626653
-9.70259 0.00201212
+0.00105965 0.663477
+0.00182942 0.205715
+0.0118515 0.0652183
+0.0625815 0.0189764
+0.578451 0.00626653
+5.17795 0.00201212
 EOD
 $d1_6 << EOD
-0.000335703 0.663477
-0.00138332 0.205715
-0.011887 0.0652183
-0.112234 0.0189764
-1.12768 0.00626652
-11.2791 0.00201212
+0.000136703 0.663477
+0.000771225 0.205715
+0.00624793 0.0652183
+0.0618734 0.0189764
+0.558592 0.00626652
+5.64041 0.00201212
 EOD
-plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/9.70259)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/5.17795)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f2' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_7 << EOD
-0.000737013 0.663477
-0.0015491 0.205715
-0.0110709 0.0652183
-0.0938156 0.0189764
-1.04014 0.00626652
-9.26228 0.00201212
+0.000766718 0.663477
+0.00124788 0.205715
+0.0061127 0.0652183
+0.049143 0.0189764
+0.516899 0.00626652
+4.57388 0.00201212
 EOD
 $d1_7 << EOD
-0.00034367 0.663477
-0.00118198 0.205715
-0.0111579 0.0652183
-0.106634 0.0189764
-1.06467 0.00626653
-10.5966 0.00201212
+0.000182621 0.663477
+0.00107301 0.205715
+0.0076059 0.0652183
+0.0593741 0.0189764
+0.576333 0.00626653
+5.95953 0.00201212
 EOD
-plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/9.26228)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/4.57388)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f11' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_8 << EOD
-0.000646461 0.663477
-0.00156094 0.205715
-0.0101667 0.0652183
-0.0934506 0.0189764
-1.03999 0.00626652
-7.2118 0.00201212
+0.000910411 0.663477
+0.00211334 0.205715
+0.00516836 0.0652183
+0.0474521 0.0189764
+0.483408 0.00626652
+4.23341 0.00201212
 EOD
 $d1_8 << EOD
-0.000357745 0.663477
-0.0011814 0.205715
-0.010473 0.0652183
-0.104334 0.0189764
-1.03699 0.00626653
-10.1962 0.00201212
+0.00016144 0.663477
+0.00095704 0.205715
+0.00716487 0.0652183
+0.0605793 0.0189764
+0.603396 0.00626653
+5.73862 0.00201212
 EOD
-plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/7.2118)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/4.23341)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_led_b3' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_9 << EOD
-0.000668012 0.663477
-0.00136546 0.205715
-0.00832493 0.0652183
-0.0755552 0.0189764
-0.924175 0.00626652
-10.1956 0.00201212
+0.000378862 0.663477
+0.00072829 0.205715
+0.00351882 0.0652183
+0.0322634 0.0189764
+0.450225 0.00626652
+3.79363 0.00201212
 EOD
 $d1_9 << EOD
-0.00040682 0.663477
-0.00135457 0.205715
-0.0115342 0.0652183
-0.111989 0.0189764
-1.11196 0.00626653
-11.1012 0.00201212
+0.000192225 0.663477
+0.00108394 0.205715
+0.00742034 0.0652183
+0.060251 0.0189764
+0.587386 0.00626653
+5.48188 0.00201212
 EOD
-plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/10.1956)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/3.79363)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'laser_532' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_10 << EOD
-0.000595715 0.745339
-0.00159877 0.237721
-0.017198 0.0773089
-0.101455 0.0238119
-1.12415 0.00742963
-10.2729 0.00228176
+0.00115819 0.745339
+0.00127332 0.237721
+0.00499432 0.0773089
+0.0410731 0.0238119
+0.496295 0.00742963
+3.37315 0.00228176
 EOD
 $d1_10 << EOD
-0.000486659 0.745339
-0.00108753 0.237721
-0.0100003 0.0773089
-0.098819 0.0238119
-0.98981 0.00742963
-9.89127 0.00228175
+0.000201329 0.745339
+0.000750734 0.237721
+0.00675469 0.0773089
+0.0547484 0.0238119
+0.554242 0.00742963
+5.50372 0.00228175
 EOD
-plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00228176*(x/10.2729)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00228176*(x/3.37315)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_rect' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_11 << EOD
-0.00139277 0.651221
-0.00293005 0.191512
-0.0173459 0.0673776
-0.146535 0.0199254
-1.50768 0.00640466
-13.0324 0.00224578
+0.00211184 0.651221
+0.00196545 0.191512
+0.00884313 0.0673776
+0.0654109 0.0199254
+0.660203 0.00640466
+4.8084 0.00224578
 EOD
 $d1_11 << EOD
-0.000786536 0.651221
-0.00193027 0.191512
-0.0161705 0.0673777
-0.149833 0.0199254
-1.46873 0.00640467
-14.9033 0.00224578
+0.000270411 0.651221
+0.00114219 0.191512
+0.00858183 0.0673777
+0.0808493 0.0199254
+0.782928 0.00640467
+7.87182 0.00224578
 EOD
-plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00224578*(x/13.0324)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00224578*(x/4.8084)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_small' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_12 << EOD
-0.00141444 0.878509
-0.0021671 0.265263
-0.0127707 0.0888789
-0.113066 0.0285845
-1.2404 0.00867623
-10.5953 0.00283295
+0.00123143 0.878509
+0.00240672 0.265263
+0.00729874 0.0888789
+0.0553333 0.0285845
+0.509157 0.00867623
+4.42805 0.00283295
 EOD
 $d1_12 << EOD
-0.000489475 0.878509
-0.00171192 0.265263
-0.0137181 0.0888789
-0.119857 0.0285845
-1.27426 0.00867623
-12.6485 0.00283295
+0.000239766 0.878509
+0.00142259 0.265263
+0.0091472 0.0888789
+0.0721868 0.0285845
+0.715567 0.00867623
+7.24803 0.00283295
 EOD
-plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00283295*(x/10.5953)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00283295*(x/4.42805)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 unset multiplot
