@@ -97,6 +97,10 @@ std::vector<std::array<double, 3>> sampledBinCmfMeans(std::span<const device::Sp
   };
   std::vector<uint64_t> lows;
   for (const auto& iv : intervals) lows.push_back(iv.cdfLow);
+  // Every bin edge and CMF node, sorted once.
+  std::vector<double> edges(obs.lambdaNm.begin(), obs.lambdaNm.end());
+  for (int e = 1; e < bins; ++e) edges.push_back(minNm + double(e) / binsPerNm);
+  std::sort(edges.begin(), edges.end());
   for (size_t j = 0; j < intervals.size(); ++j) {
     const auto& iv = intervals[j];
     const double p = cdfProbability(lows, j);
@@ -108,12 +112,13 @@ std::vector<std::array<double, 3>> sampledBinCmfMeans(std::span<const device::Sp
       for (int k = 0; k < 3; ++k) weighted[b][k] += p * c[k];
       continue;
     }
-    // Pieces between the interval's ends, bin edges and CMF nodes: on each
-    // the density and the CMF are linear, so Simpson's rule is exact.
-    std::vector<double> cuts{lambda0, lambda0 + width};
-    for (int e = 1; e < bins; ++e) cuts.push_back(minNm + double(e) / binsPerNm);
-    for (double node : obs.lambdaNm) cuts.push_back(node);
-    std::sort(cuts.begin(), cuts.end());
+    // Pieces between the interval's ends and the bin edges and CMF nodes
+    // inside it: on each the density and the CMF are linear, so Simpson's
+    // rule is exact.
+    std::vector<double> cuts{lambda0};
+    for (auto it = std::upper_bound(edges.begin(), edges.end(), lambda0); it != edges.end() && *it < lambda0 + width; ++it)
+      cuts.push_back(*it);
+    cuts.push_back(lambda0 + width);
     auto density = [&](double lambda) { return p / width * (1.0 - slope + 2.0 * slope * (lambda - lambda0) / width); };
     for (size_t i = 0; i + 1 < cuts.size(); ++i) {
       const double u = std::max(cuts[i], lambda0), v = std::min(cuts[i + 1], lambda0 + width);
