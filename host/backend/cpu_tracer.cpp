@@ -5,9 +5,20 @@
 #include <stdexcept>
 #include <thread>
 
+#include <sys/mman.h>
+
 #include "kernel/beam_kernel.h"
 
 namespace spectrace {
+
+template <typename T>
+T* HugePageAllocator<T>::allocate(size_t n) {
+  const size_t bytes = (n * sizeof(T) + kAlignment - 1) / kAlignment * kAlignment;
+  void* p = ::operator new(bytes, std::align_val_t(kAlignment));
+  if (bytes >= kAlignment) ::madvise(p, bytes, MADV_HUGEPAGE);  // a hint: failure changes nothing
+  return static_cast<T*>(p);
+}
+template struct HugePageAllocator<uint64_t>;
 
 CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage)
     : plan_(plan),
@@ -33,6 +44,17 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   std::atomic<uint64_t> stoppedAtBlock{blockCount};
   auto worker = [&] {
     device::BeamKernel local = kernel;
+    // Two groups of queued adds: one fills while the other's prefetched
+    // lines arrive (device::PendingCounts).
+    device::PendingCounts groups[2] = {device::PendingCounts(counters_), device::PendingCounts(counters_)};
+    size_t filling = 0;
+    local.pending = &groups[filling];
+    auto nextGroupIfFull = [&] {
+      if (!groups[filling].full()) return;
+      filling ^= 1;
+      groups[filling].flush();
+      local.pending = &groups[filling];
+    };
     uint64_t countedHere = 0;
     for (;;) {
       const uint64_t block = nextBlock.fetch_add(1, std::memory_order_relaxed);
@@ -44,11 +66,18 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
       }
       const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
       if (profileStage_ == device::kProfileStageFull)
-        for (uint64_t i = block * kBlock; i < end; ++i) countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
+        for (uint64_t i = block * kBlock; i < end; ++i) {
+          countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
+          nextGroupIfFull();
+        }
       else
-        for (uint64_t i = block * kBlock; i < end; ++i)
+        for (uint64_t i = block * kBlock; i < end; ++i) {
           countedHere += local.profileBeam(firstBeam + i, profileStage_) ? 1 : 0;
+          nextGroupIfFull();
+        }
     }
+    groups[0].flush();
+    groups[1].flush();
     counted.fetch_add(countedHere, std::memory_order_relaxed);
   };
   std::vector<std::jthread> pool;

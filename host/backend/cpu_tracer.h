@@ -3,13 +3,32 @@
 // the GPU draws through the same shared kernel (host/kernel), counting into
 // the same device counter layout.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "backend/tracer.h"
 #include "compile/compile_scene.h"
 
 namespace spectrace {
+
+// Allocates large arrays on 2 MiB boundaries and asks the kernel for huge
+// pages (madvise(MADV_HUGEPAGE), a hint; "madvise" is Debian's default
+// transparent-huge-page mode): counts land all over a film of up to
+// gigabytes, and with 4 KiB pages nearly every one is also a TLB miss.
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  T* allocate(size_t n);
+  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(kAlignment)); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  static constexpr size_t kAlignment = size_t(2) << 20;
+};
 
 class CpuTracer final : public Tracer {
  public:
@@ -31,7 +50,7 @@ class CpuTracer final : public Tracer {
   CompiledScene plan_;
   unsigned threads_;
   uint32_t profileStage_;
-  std::vector<uint64_t> counters_;  // the stored pixels' counters, one chunk
+  std::vector<uint64_t, HugePageAllocator<uint64_t>> counters_;  // the stored pixels' counters, one chunk
   uint64_t countedBeams_ = 0;
 };
 

@@ -15,6 +15,39 @@
 
 namespace spectrace::device {
 
+// Counts a CPU thread has computed but not yet added to the film: the
+// film's counters are scattered over a large histogram, so each add is
+// likely a cache miss, and an atomic add waits for its miss with nothing
+// else in flight. Pending adds are prefetched when they are queued and added
+// a group of beams later, when their lines have arrived. Integer adds
+// commute, so the film is the same bits whatever the order.
+class PendingCounts {
+ public:
+  // Enough for a group of beams (each adds at most a bin, X, Y, Z and a
+  // squared weight).
+  static constexpr size_t kCapacity = 256;
+
+  explicit PendingCounts(std::span<uint64_t> filmCounters) : counters_(filmCounters) {}
+  bool full() const { return size_ + 5 > kCapacity; }
+  void push(uint32_t index, uint64_t amount) {
+    __builtin_prefetch(&counters_[index], 1);
+    index_[size_] = index;
+    amount_[size_] = amount;
+    ++size_;
+  }
+  void flush() {
+    for (size_t i = 0; i < size_; ++i)
+      std::atomic_ref<uint64_t>(counters_[index_[i]]).fetch_add(amount_[i], std::memory_order_relaxed);
+    size_ = 0;
+  }
+
+ private:
+  std::span<uint64_t> counters_;
+  size_t size_ = 0;
+  uint32_t index_[kCapacity];
+  uint64_t amount_[kCapacity];
+};
+
 // GLSL names (vec3, uvec4, sqrt, min, abs, ...) for the shared code.
 using namespace glm;
 
@@ -51,10 +84,13 @@ class BeamKernel {
   LightRecord readLight(uint i) const { return lights[i]; }
   SpectralInterval readInterval(uint i) const { return intervals[i]; }
   vec3 readCmf(uint i) const { return cmf[i]; }
-  // One chunk on the CPU: `chunk` is always 0.
+  // One chunk on the CPU: `chunk` is always 0. Queued when the caller gave
+  // a PendingCounts (it must flush it), else added at once.
   void addCount(uint /*chunk*/, uint index, uint64_t amount) const {
-    std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount, std::memory_order_relaxed);
+    if (pending) pending->push(index, amount);
+    else std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount, std::memory_order_relaxed);
   }
+  PendingCounts* pending = nullptr;
 
  private:
   TraceConstants constants;
