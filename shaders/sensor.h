@@ -41,6 +41,9 @@ FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetr
   return true;
 }
 
+// A pixel's index, row-major over the whole sensor (beam records).
+FN uint pixelOfCell(uvec2 cell, uint pixelsX) { return cell.y * pixelsX + cell.x; }
+
 // The observer's CMF at a wavelength, linear between the table's nodes and
 // zero outside.
 FN vec3 cmfAtWavelength(float lambda) {

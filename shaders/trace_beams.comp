@@ -114,7 +114,7 @@ void main() {
       float spareUniform;
       float ratio;
       bool hit = traceBeam(beamIndex, cell, bin, lambda, spareUniform, ratio);
-      uint pixel = cell.y * constants.pixelsX + cell.x;
+      uint pixel = pixelOfCell(cell, constants.pixelsX);
       beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(weightUnitsOf(ratio, spareUniform)), 0u)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
     } else if (traceAndCountOrProfileBeam(beamIndex) && countBeamsOnDevice != 0u) {

@@ -65,16 +65,12 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
         break;
       }
       const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
-      if (profileStage_ == device::kProfileStageFull)
-        for (uint64_t i = block * kBlock; i < end; ++i) {
-          countedHere += local.traceAndCountBeam(firstBeam + i) ? 1 : 0;
-          nextGroupIfFull();
-        }
-      else
-        for (uint64_t i = block * kBlock; i < end; ++i) {
-          countedHere += local.profileBeam(firstBeam + i, profileStage_) ? 1 : 0;
-          nextGroupIfFull();
-        }
+      const bool wholeKernel = profileStage_ == device::kProfileStageFull;
+      for (uint64_t i = block * kBlock; i < end; ++i) {
+        const bool hit = wholeKernel ? local.traceAndCountBeam(firstBeam + i) : local.profileBeam(firstBeam + i, profileStage_);
+        countedHere += hit ? 1 : 0;
+        nextGroupIfFull();
+      }
     }
     groups[0].flush();
     groups[1].flush();

@@ -121,7 +121,7 @@ std::vector<std::array<double, 3>> sampledBinCmfMeans(std::span<const device::Sp
     cuts.push_back(lambda0 + width);
     auto density = [&](double lambda) { return p / width * (1.0 - slope + 2.0 * slope * (lambda - lambda0) / width); };
     for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-      const double u = std::max(cuts[i], lambda0), v = std::min(cuts[i + 1], lambda0 + width);
+      const double u = cuts[i], v = cuts[i + 1];  // all inside [lambda0, lambda0 + width]
       if (!(u < v)) continue;
       const double m = 0.5 * (u + v);
       const size_t b = binOf(m);

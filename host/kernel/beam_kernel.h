@@ -70,7 +70,7 @@ class BeamKernel {
     float lambda, spare, ratio;
     uvec2 cell;
     const bool hit = traceBeam(index, cell, binOut, lambda, spare, ratio);
-    pixelOut = cell.y * constants.pixelsX + cell.x;
+    pixelOut = pixelOfCell(cell, constants.pixelsX);
     if (unitsOut) *unitsOut = hit ? weightUnitsOf(ratio, spare) : 0;
     return hit;
   }
