@@ -6,11 +6,26 @@
 #include <array>
 #include <cstdint>
 
+#include <Random123/philox.h>
+// Random123 also defines philox4x32(c, k) as a macro, which would rewrite
+// the kernel's own philox4x32 (shaders/kernel_interface.h).
+#undef philox4x32
+#undef philox2x32
+#undef philox4x64
+#undef philox2x64
+
 namespace spectrace {
 
 // Four 32-bit words for (seed, beamIndex, block). Counter = (index lo, index
-// hi, block, 0), key = (seed lo, seed hi).
-std::array<uint32_t, 4> philoxWords(uint64_t seed, uint64_t beamIndex, uint32_t block);
+// hi, block, 0), key = (seed lo, seed hi). Inline: a beam draws two blocks,
+// and inlined the compiler interleaves their independent rounds.
+inline std::array<uint32_t, 4> philoxWords(uint64_t seed, uint64_t beamIndex, uint32_t block) {
+  r123::Philox4x32_R<10> philox;
+  const r123::Philox4x32_R<10>::ctr_type counter = {{uint32_t(beamIndex), uint32_t(beamIndex >> 32), block, 0u}};
+  const r123::Philox4x32_R<10>::key_type key = {{uint32_t(seed), uint32_t(seed >> 32)}};
+  const auto out = philox(counter, key);
+  return {out[0], out[1], out[2], out[3]};
+}
 
 // The project's one integer-to-float conversion: (x >> 8) * 2^-24, which is
 // exact in float32 and lies in [0, 1 - 2^-24].
