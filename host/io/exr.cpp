@@ -8,6 +8,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <exception>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "io/atomic_file.h"
@@ -174,6 +176,15 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
       addAttribute(kEmissiveUnits, Imf::StringAttribute("W.m^-2.nm^-1"));
       for (std::size_t b = 0; b < bins; ++b) insertChannel(spectralNames[b], image.spectralIrradiance.data() + b, bins);
     }
+
+    // ZIP compresses blocks of 16 rows independently: with OpenEXR's thread
+    // pool on every core, writing a large image takes about 1 / cores of
+    // the time (one thread by default). Set once, for the whole process.
+    static const bool threadsSet = [] {
+      Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
+      return true;
+    }();
+    (void)threadsSet;
 
     // Only now touch the disk; an exception from here on removes the temp
     // file (~AtomicFile) before it propagates.
