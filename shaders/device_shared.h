@@ -5,6 +5,7 @@
 #define SPECTRACE_DEVICE_SHARED_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -257,19 +258,24 @@ struct ResolveConstants {
   uint pixelsPerChunk;
   uint countersPerPixel;
   uint exactColour;          // 1: XYZ from the per-beam colour counters
+  uint squaredWeightOffset;  // of the squared-weight counter in a pixel's; 0: none (never first)
   float irradiancePerCount;  // W/m^2 carried by one count (per bin)
   float xyzPerColourUnit;    // 683 * (irradiance per full-weight beam) / kColourFixedPointScale
-  float padding0;
   vec3 xyzToRgbRow0;         // linear sRGB = rows . XYZ
   vec3 xyzToRgbRow1;
   vec3 xyzToRgbRow2;
 };
 
-// Resolve output: one per pixel.
+// Resolve output: one per pixel, with the pixel's exact sums, so the host
+// needs no download of the film for the error estimate and the summary.
 struct ResolvedPixel {
   vec3 rgb;          // linear sRGB
   vec3 xyz;          // CIE XYZ, Y in lux
   float irradiance;  // W/m^2 over all bins
+  uint padding0;
+  uint64_t totalCount;          // the sum of the pixel's bin counters
+  uint64_t squaredWeightCount;  // its squared-weight counter (0 unless weighted)
+  uint64_t largestCount;        // its largest bin counter
 };
 
 // Per-dispatch push constants of the resolve pass: a slice of pixels, so the
@@ -330,7 +336,8 @@ static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);
 static_assert(sizeof(TracePush) == 16);
 static_assert(sizeof(ResolveConstants) == 68);
-static_assert(sizeof(ResolvedPixel) == 28);
+static_assert(sizeof(ResolvedPixel) == 56);
+static_assert(offsetof(ResolvedPixel, totalCount) == 32);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(CeilingPush) == 56);
 static_assert(sizeof(ResolvePush) == 8);

@@ -45,6 +45,7 @@ void main() {
   uint chunk = pixel / rc.pixelsPerChunk;
   uint base = (pixel - chunk * rc.pixelsPerChunk) * rc.countersPerPixel;
   uint64_t total = 0ul;  // exact
+  uint64_t largest = 0ul;
   vec3 weighted = vec3(0.0);
   // llvmpipe (lavapipe) ends a shader loop after 65535 iterations in all
   // (nesting does not reset the count), which silently dropped the bins
@@ -61,17 +62,22 @@ void main() {
     uint64_t c2 = readCount(chunk, base + b + 2u);
     uint64_t c3 = readCount(chunk, base + b + 3u);
     total += c0;
+    largest = max(largest, c0);
     weighted += float(c0) * binWeights[b];
     total += c1;
+    largest = max(largest, c1);
     weighted += float(c1) * binWeights[b + 1u];
     total += c2;
+    largest = max(largest, c2);
     weighted += float(c2) * binWeights[b + 2u];
     total += c3;
+    largest = max(largest, c3);
     weighted += float(c3) * binWeights[b + 3u];
   }
   for (; b < rc.bins; ++b) {
     uint64_t count = readCount(chunk, base + b);
     total += count;
+    largest = max(largest, count);
     weighted += float(count) * binWeights[b];
   }
   vec3 xyz = weighted * rc.irradiancePerCount;
@@ -84,5 +90,10 @@ void main() {
   result.xyz = xyz;
   result.rgb = vec3(dot(rc.xyzToRgbRow0, xyz), dot(rc.xyzToRgbRow1, xyz), dot(rc.xyzToRgbRow2, xyz));
   result.irradiance = float(total) * rc.irradiancePerCount;
+  result.padding0 = 0u;
+  result.totalCount = total;
+  result.squaredWeightCount =
+      rc.squaredWeightOffset != 0u ? readCount(chunk, base + rc.squaredWeightOffset) : 0ul;
+  result.largestCount = largest;
   resolved[slot] = result;
 }

@@ -103,7 +103,11 @@ void CpuTracer::upload(const SpectralHistogram& histogram) {
   countedBeams_ = histogram.countedBeams;
 }
 
-RenderImage CpuTracer::develop(const ResolveParameters& parameters) { return resolveOnCpu(download(), parameters); }
+RenderImage CpuTracer::develop(const ResolveParameters& parameters, FilmSummary* summary) {
+  RenderImage image = resolveStoredCountersOnCpu(counters_, plan_.film, parameters, summary);
+  if (summary) summary->countedBeams = countedBeams_;
+  return image;
+}
 
 std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
   device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable);

@@ -43,7 +43,7 @@ class CpuTracer final : public Tracer {
   void clear() override;
   SpectralHistogram download() const override;
   void upload(const SpectralHistogram& histogram) override;
-  RenderImage develop(const ResolveParameters& parameters) override;
+  RenderImage develop(const ResolveParameters& parameters, FilmSummary* summary = nullptr) override;
   std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count) override;
 
  private:

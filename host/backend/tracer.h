@@ -43,8 +43,10 @@ class Tracer {
   virtual void upload(const SpectralHistogram& histogram) = 0;
   // Adds a film of the same scene traced over other beams (exact).
   void merge(const SpectralHistogram& other);
-  // The film developed into XYZ, RGB and irradiance.
-  virtual RenderImage develop(const ResolveParameters& parameters) = 0;
+  // The film developed into XYZ, RGB, irradiance and (parameters.beams > 0)
+  // its error estimate; `summary`, when given, gets the counted beams and
+  // the largest count. Needs no download().
+  virtual RenderImage develop(const ResolveParameters& parameters, FilmSummary* summary = nullptr) = 0;
 
   // Traces beams [firstBeam, firstBeam + count) without counting them and
   // returns each beam's pixel, bin and units, or pixel kBeamMissed for a

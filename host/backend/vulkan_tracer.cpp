@@ -300,10 +300,14 @@ std::vector<glm::uvec4> philoxOnGpu(const vk_util::Context& context, uint64_t se
   return result;
 }
 
-SpectralHistogram VulkanTracer::download() const {
-  SpectralHistogram histogram = plan_.film.emptyHistogram();
+uint64_t VulkanTracer::countedBeamsOnDevice() const {
   device::TraceStats stats{};
   stats_.download(&stats, sizeof(stats));
+  return stats.countedBeams;
+}
+
+SpectralHistogram VulkanTracer::download() const {
+  SpectralHistogram histogram = plan_.film.emptyHistogram();
   std::vector<uint64_t> counters;
   size_t pixel = 0;
   for (size_t c = 0; c < histogramChunks_.size(); ++c) {
@@ -312,7 +316,7 @@ SpectralHistogram VulkanTracer::download() const {
     unpackDeviceCounters(counters, plan_.film, pixel, histogram);
     pixel += counters.size() / plan_.film.countersPerPixel();
   }
-  histogram.countedBeams = countsBeamsOnDevice(plan_) ? stats.countedBeams : histogram.total();
+  histogram.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : histogram.total();
   return histogram;
 }
 
@@ -339,6 +343,8 @@ device::ResolveConstants resolveConstants(const CompiledScene& plan, const Resol
   constants.pixelsPerChunk = pixelsPerChunk;
   constants.countersPerPixel = plan.film.countersPerPixel();
   constants.exactColour = parameters.useExactColour && plan.film.exactColour ? 1u : 0u;
+  constants.squaredWeightOffset =
+      plan.film.weighted() ? device::squaredWeightCounterOffset(plan.film.storedBins, plan.film.exactColour) : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
   const double perBeam = parameters.irradiancePerCount * double(plan.film.weightUnits);
   constants.xyzPerColourUnit = float(683.0 * perBeam / device::kColourFixedPointScale);
@@ -359,7 +365,7 @@ std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const Resolve
   return weights;
 }
 
-RenderImage VulkanTracer::develop(const ResolveParameters& parameters) {
+RenderImage VulkanTracer::develop(const ResolveParameters& parameters, FilmSummary* summary) {
   const device::ResolveConstants constants = resolveConstants(plan_, parameters, split_.pixelsPerChunk);
   const uint64_t pixelCount = plan_.film.storedPixelCount();  // only stored pixels are resolved; the others are 0
   const std::vector<glm::vec3> weights = storedBinWeights(plan_, parameters);
@@ -383,6 +389,8 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters) {
   image.rgb.assign(plan_.film.pixelCount() * 3, 0.0f);
   image.xyz.assign(plan_.film.pixelCount() * 3, 0.0f);
   image.irradiance.assign(plan_.film.pixelCount(), 0.0f);
+  if (parameters.beams > 0) image.irradianceError.assign(plan_.film.pixelCount(), 0.0f);
+  FilmSummary totals;
   std::vector<device::ResolvedPixel> slice(maxSlice);
   double deviceSeconds = 0.0;
   for (uint64_t first = 0; first < pixelCount; first += maxSlice) {
@@ -404,9 +412,21 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters) {
         image.xyz[p * 3 + k] = slice[i].xyz[k];
       }
       image.irradiance[p] = slice[i].irradiance;
+      // The error in double on the host, from the exact sums, as resolveOnCpu does.
+      if (parameters.beams > 0)
+        image.irradianceError[p] = irradianceErrorOfPixel(slice[i].totalCount, slice[i].squaredWeightCount,
+                                                          parameters.beams, plan_.film.weightUnits,
+                                                          parameters.irradiancePerCount, p);
+      totals.countedBeams += slice[i].totalCount;
+      totals.largestCount = std::max(totals.largestCount, slice[i].largestCount);
     }
   }
   developDeviceSeconds_ += deviceSeconds;
+  if (summary) {
+    // Counted on the device, or (every beam adds one unit) the bins' sum.
+    totals.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : totals.countedBeams;
+    *summary = totals;
+  }
   buffers_->giveBack("resolve constants", std::move(constantsBuffer));
   buffers_->giveBack("bin weights", std::move(weightsBuffer));
   buffers_->giveBack("resolved pixels", std::move(output));

@@ -89,13 +89,14 @@ class VulkanTracer final : public Tracer {
   void clear() override;
   SpectralHistogram download() const override;
   void upload(const SpectralHistogram& histogram) override;
-  RenderImage develop(const ResolveParameters& parameters) override;
+  RenderImage develop(const ResolveParameters& parameters, FilmSummary* summary = nullptr) override;
   std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count) override;
 
   const HistogramSplit& split() const { return split_; }
   uint64_t maxBeamsPerDispatch() const;
 
  private:
+  uint64_t countedBeamsOnDevice() const;  // the trace stats' count (weighted films only)
   const vk_util::Context& context_;
   std::shared_ptr<TracerBufferPool> buffers_;  // declared before the buffers taken from it
   CompiledScene plan_;

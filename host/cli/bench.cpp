@@ -94,7 +94,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
                         o.cpuThreads = command.threads;
                         o.plan.exactColour = exactColour;
                       });
-      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.histogram.countedBeams,
+      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.summary.countedBeams,
                         result.traceWallSeconds, result.traceDeviceSeconds};
       fmt::print("{:<44} {:<6} {:>9.3f} {:>10.2f} {:>15} {:>8.1f}%\n", row.deviceName, exactColour ? "exact" : "bins",
                  row.wallSeconds, double(row.beams) / row.wallSeconds * 1e-6,

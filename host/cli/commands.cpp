@@ -111,6 +111,7 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
     options.checkpointSeconds = command.checkpointSeconds;
     options.plan.trimSpectrum = !command.fullSpectrum;
     options.spectral = command.spectral;
+    options.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
     options.plan.trimPixels = !command.fullSensor;
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
@@ -164,14 +165,13 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
       }
       std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,
                    result.wallSeconds, double(result.beamsTraced) / result.wallSeconds * 1e-6, result.deviceName.c_str());
-      const auto& counts = result.histogram.counts;
-      const uint64_t largest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
-      const uint64_t counted = result.histogram.countedBeams;
+      const uint64_t largest = result.summary.largestCount;
+      const uint64_t counted = result.summary.countedBeams;
       std::fprintf(stderr, "spectrace: %llu beams counted (%.3g%% of those traced); the largest pixel-bin holds %llu %s\n",
                    (unsigned long long)counted,
                    result.beamsTraced ? 100.0 * double(counted) / double(result.beamsTraced) : 0.0,
                    (unsigned long long)largest,
-                   result.histogram.isWeighted() ? "units of 2^-24 beam" : "beams");
+                   result.plan.film.weighted() ? "units of 2^-24 beam" : "beams");
       auto png = output;
       png.replace_extension(".png");
       std::fprintf(stderr, "spectrace: wrote %s%s\n", output.c_str(), command.png ? (" and " + png.string()).c_str() : "");

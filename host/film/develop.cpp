@@ -1,43 +1,108 @@
 #include "film/develop.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "device_shared.h"
 #include "film/pixel_variance.h"
 
 namespace spectrace {
 
-RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters) {
+namespace {
+
+RenderImage blankImage(uint32_t pixelsX, uint32_t pixelsY, bool withError) {
   RenderImage image;
-  image.width = int(histogram.pixelsX);
-  image.height = int(histogram.pixelsY);
+  image.width = int(pixelsX);
+  image.height = int(pixelsY);
+  const size_t pixels = size_t(pixelsX) * pixelsY;
+  image.rgb.assign(pixels * 3, 0.0f);
+  image.xyz.assign(pixels * 3, 0.0f);
+  image.irradiance.assign(pixels, 0.0f);
+  if (withError) image.irradianceError.assign(pixels, 0.0f);
+  return image;
+}
+
+// One pixel's counters, wherever they live: its counts of bins
+// [firstBin, firstBin + bins) (the others are 0), its X, Y, Z colour sums
+// (or null) and its squared-weight sum.
+struct PixelCounters {
+  const uint64_t* counts;
+  uint32_t firstBin, bins;
+  const uint64_t* colourSums;
+  uint64_t squaredWeights;
+};
+
+// Pixel p of `image` from its counters, in double. Bins outside the given
+// range hold 0 and would add exactly +0.0, so skipping them changes nothing.
+void resolvePixel(const PixelCounters& pixel, size_t p, const ResolveParameters& parameters, uint64_t unitsPerBeam,
+                  RenderImage& image, FilmSummary* summary) {
+  glm::dvec3 xyz(0.0);
+  uint64_t total = 0, largest = 0;
+  for (uint32_t i = 0; i < pixel.bins; ++i) {
+    const uint64_t c = pixel.counts[i];
+    total += c;
+    largest = std::max(largest, c);
+    const auto& w = parameters.binWeights[pixel.firstBin + i];
+    xyz += double(c) * glm::dvec3(w[0], w[1], w[2]);
+  }
+  xyz *= parameters.irradiancePerCount;
+  if (parameters.useExactColour && pixel.colourSums) {
+    const double perBeam = parameters.irradiancePerCount * double(unitsPerBeam);
+    const double perUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
+    for (int k = 0; k < 3; ++k) xyz[k] = double(pixel.colourSums[k]) * perUnit;
+  }
+  const glm::dvec3 rgb = parameters.xyzToRgb * xyz;
+  for (int k = 0; k < 3; ++k) {
+    image.xyz[p * 3 + k] = float(xyz[k]);
+    image.rgb[p * 3 + k] = float(rgb[k]);
+  }
+  image.irradiance[p] = float(double(total) * parameters.irradiancePerCount);
+  if (parameters.beams > 0)
+    image.irradianceError[p] = irradianceErrorOfPixel(total, pixel.squaredWeights, parameters.beams, unitsPerBeam,
+                                                      parameters.irradiancePerCount, p);
+  if (summary) summary->largestCount = std::max(summary->largestCount, largest);
+}
+
+}  // namespace
+
+RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                         FilmSummary* summary) {
+  RenderImage image = blankImage(histogram.pixelsX, histogram.pixelsY, parameters.beams > 0);
   const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
-  image.rgb.resize(pixels * 3);
-  image.xyz.resize(pixels * 3);
-  image.irradiance.resize(pixels);
+  if (summary) *summary = FilmSummary{histogram.countedBeams, 0};
   for (size_t p = 0; p < pixels; ++p) {
-    glm::dvec3 xyz(0.0);
-    uint64_t total = 0;
-    for (uint32_t b = 0; b < histogram.bins; ++b) {
-      const uint64_t c = histogram.counts[p * histogram.bins + b];
-      total += c;
-      const auto& w = parameters.binWeights[b];
-      xyz += double(c) * glm::dvec3(w[0], w[1], w[2]);
-    }
-    xyz *= parameters.irradiancePerCount;
-    if (parameters.useExactColour && histogram.hasExactColour()) {
-      const double perBeam = parameters.irradiancePerCount * double(histogram.unitsPerBeam);
-      const double perUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
-      for (int k = 0; k < 3; ++k) xyz[k] = double(histogram.colourSums[p * 3 + k]) * perUnit;
-    }
-    const glm::dvec3 rgb = parameters.xyzToRgb * xyz;
-    for (int k = 0; k < 3; ++k) {
-      image.xyz[p * 3 + k] = float(xyz[k]);
-      image.rgb[p * 3 + k] = float(rgb[k]);
-    }
-    image.irradiance[p] = float(double(total) * parameters.irradiancePerCount);
+    const PixelCounters counters{histogram.counts.data() + p * histogram.bins, 0, histogram.bins,
+                                 histogram.hasExactColour() ? histogram.colourSums.data() + p * 3 : nullptr,
+                                 histogram.isWeighted() ? histogram.squaredWeightSums[p] : 0};
+    resolvePixel(counters, p, parameters, histogram.unitsPerBeam, image, summary);
   }
   return image;
+}
+
+RenderImage resolveStoredCountersOnCpu(std::span<const uint64_t> counters, const FilmLayout& film,
+                                       const ResolveParameters& parameters, FilmSummary* summary) {
+  if (counters.size() != film.storedCounterCount())
+    throw std::invalid_argument("resolveStoredCountersOnCpu: the counters do not match the film's layout");
+  RenderImage image = blankImage(film.pixelsX, film.pixelsY, parameters.beams > 0);
+  const uint32_t stride = film.countersPerPixel();
+  const uint32_t colour = device::colourCounterOffset(film.storedBins);
+  const uint32_t squared = device::squaredWeightCounterOffset(film.storedBins, film.exactColour);
+  for (uint64_t stored = 0; stored < film.storedPixelCount(); ++stored) {
+    const uint64_t* src = counters.data() + stored * stride;
+    const PixelCounters pixel{src, film.firstStoredBin, film.storedBins, film.exactColour ? src + colour : nullptr,
+                              film.weighted() ? src[squared] : 0};
+    resolvePixel(pixel, film.fullPixelOfStored(stored), parameters, film.weightUnits, image, summary);
+  }
+  return image;
+}
+
+float irradianceErrorOfPixel(uint64_t total, uint64_t squaredWeights, uint64_t beams, uint64_t unitsPerBeam,
+                             double irradiancePerCount, size_t pixel) {
+  if (beams == 0) return 0.0f;
+  const double relativeVariance = pixelRelativeVariance(total, squaredWeights, beams, unitsPerBeam, pixel);
+  if (!std::isfinite(relativeVariance)) return 0.0f;  // no counts: no irradiance and no estimate
+  return float(std::sqrt(relativeVariance) * (double(total) * irradiancePerCount));
 }
 
 std::vector<float> developSpectrum(const SpectralHistogram& histogram, const ResolveParameters& parameters,
@@ -60,13 +125,13 @@ std::vector<float> developIrradianceError(const SpectralHistogram& histogram, co
   const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
   std::vector<float> error(pixels, 0.0f);
   if (beams == 0) return error;
+  // The shape checks and the per-pixel bounds of estimatedRelativeVariance.
   const std::vector<double> relativeVariance = estimatedRelativeVariance(histogram, beams);
   for (size_t p = 0; p < pixels; ++p) {
-    if (!std::isfinite(relativeVariance[p])) continue;  // no counts: no irradiance and no estimate
+    if (!std::isfinite(relativeVariance[p])) continue;
     uint64_t total = 0;
     for (uint32_t b = 0; b < histogram.bins; ++b) total += histogram.counts[p * histogram.bins + b];
-    const double irradiance = double(total) * parameters.irradiancePerCount;
-    error[p] = float(std::sqrt(relativeVariance[p]) * irradiance);
+    error[p] = float(std::sqrt(relativeVariance[p]) * (double(total) * parameters.irradiancePerCount));
   }
   return error;
 }

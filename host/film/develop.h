@@ -2,11 +2,14 @@
 // Histogram -> image on the host (double precision): used by --device cpu
 // and as the reference for the resolve shader.
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 
+#include "film/film_layout.h"
 #include "film/spectral_histogram.h"
 #include "io/image.h"
 
@@ -24,9 +27,35 @@ struct ResolveParameters {
   // Take XYZ from the per-beam colour sums when the histogram has them
   // (exact whatever the bin count), else from the bin-averaged CMFs.
   bool useExactColour = true;
+  // The beams the film holds; with beams > 0 develop also writes each
+  // pixel's error estimate (error.E, irradianceErrorOfPixel).
+  uint64_t beams = 0;
 };
 
-RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters);
+// What develop reports about the film besides the image, from the pixels'
+// exact sums: no download of the film is needed for it.
+struct FilmSummary {
+  uint64_t countedBeams = 0;  // beams counted (each added to one bin)
+  uint64_t largestCount = 0;  // the largest pixel-bin counter (in counter units)
+};
+
+// Histogram -> image; `summary`, when given, gets the largest count and
+// the histogram's counted beams.
+RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParameters& parameters,
+                         FilmSummary* summary = nullptr);
+// The same from the device layout of the film's stored pixels and bins
+// (FilmLayout: the CPU reference's counters), without building a histogram:
+// bit-identical to resolveOnCpu of the unpacked film. The summary's counted
+// beams are left to the caller.
+RenderImage resolveStoredCountersOnCpu(std::span<const uint64_t> counters, const FilmLayout& film,
+                                       const ResolveParameters& parameters, FilmSummary* summary = nullptr);
+
+// One pixel's estimated standard error of its irradiance in W/m^2:
+// sqrt(pixelRelativeVariance) x irradiance, the irradiance in double from
+// the pixel's total count; 0 for an empty pixel (no estimate) and for
+// beams == 0.
+float irradianceErrorOfPixel(uint64_t total, uint64_t squaredWeights, uint64_t beams, uint64_t unitsPerBeam,
+                             double irradiancePerCount, size_t pixel);
 
 // Spectral irradiance in W m^-2 nm^-1 of every pixel and bin of the
 // histogram, [pixel][bin] like its counts: count x irradiancePerCount /

@@ -2,6 +2,7 @@
 // The render's own error estimate, from the counts alone: the film owns it so
 // that develop can write it beside the image (error.E) and metrics can judge
 // it against a reference.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,5 +20,10 @@ namespace spectrace {
 // C = 0: undefined, NaN (computeErrorMetrics skips and counts such pixels).
 // Throws std::invalid_argument if beams == 0 or a pixel's count exceeds it.
 std::vector<double> estimatedRelativeVariance(const SpectralHistogram& histogram, uint64_t beams);
+// The same for one pixel, from its exact sums: total counts C, the
+// squared-weight sum (weighted films only) and the units of a full-weight
+// beam; `pixel` only names it in the error.
+double pixelRelativeVariance(uint64_t total, uint64_t squaredWeights, uint64_t beams, uint64_t unitsPerBeam,
+                             size_t pixel);
 
 }  // namespace spectrace

@@ -36,6 +36,7 @@ RenderResult traceBeams(const Device& device, const RenderJob& job, const BeamRa
   options.checkpointSeconds = 0;
   options.onCheckpoint = nullptr;
   options.onCheckpointFilm = nullptr;
+  options.downloadFilm = true;  // the films are summed on rank 0
   return render(job.scene, options, device);
 }
 

@@ -22,18 +22,16 @@ ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& 
     for (double& v : w) v *= kLumensPerWatt;
   parameters.xyzToRgb = xyzToLinearSrgb();
   parameters.irradiancePerCount = beams > 0 ? plan.irradiancePerCount(beams) : 0.0;
+  parameters.beams = beams;
   return parameters;
 }
 
-void addHostChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
-                     const ResolveParameters& parameters, uint64_t beams, bool spectral) {
-  image.irradianceError = developIrradianceError(histogram, parameters, beams);
-  if (spectral) {
-    const FilmLayout& film = plan.film;
-    image.spectralBinCentresNm = binCentresNm(film.lambdaMinNm, film.lambdaMaxNm, film.bins);
-    image.spectralIrradiance =
-        developSpectrum(histogram, parameters, (film.lambdaMaxNm - film.lambdaMinNm) / double(film.bins));
-  }
+void addSpectralChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
+                         const ResolveParameters& parameters) {
+  const FilmLayout& film = plan.film;
+  image.spectralBinCentresNm = binCentresNm(film.lambdaMinNm, film.lambdaMaxNm, film.bins);
+  image.spectralIrradiance =
+      developSpectrum(histogram, parameters, (film.lambdaMaxNm - film.lambdaMinNm) / double(film.bins));
 }
 
 namespace {
@@ -158,8 +156,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
         secondsSince(lastCheckpoint) >= options.checkpointSeconds) {
       const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
       RenderImage image = tracer->develop(parameters);
-      const SpectralHistogram film = tracer->download();
-      addHostChannels(image, film, plan, parameters, done, options.spectral);
+      const bool needsFilm = options.spectral || options.onCheckpointFilm;
+      const SpectralHistogram film = needsFilm ? tracer->download() : SpectralHistogram();
+      if (options.spectral) addSpectralChannels(image, film, plan, parameters);
       options.onCheckpoint(image, done, result.deviceLabel());
       if (options.onCheckpointFilm) options.onCheckpointFilm(film, done);
       lastCheckpoint = Clock::now();
@@ -167,11 +166,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   }
   result.beamsTraced = done;
   result.traceWallSeconds = secondsSince(traceStart);
-  result.histogram = tracer->download();
   const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
-  result.image = tracer->develop(parameters);
-  if (!options.hostChannelsByCaller)
-    addHostChannels(result.image, result.histogram, plan, parameters, done, options.spectral);
+  result.image = tracer->develop(parameters, &result.summary);
+  if (options.downloadFilm || options.spectral) result.histogram = tracer->download();
+  if (options.spectral && !options.spectralByCaller) addSpectralChannels(result.image, result.histogram, plan, parameters);
   result.traceDeviceSeconds = tracer->traceDeviceSeconds();
   result.resolveDeviceSeconds = tracer->developDeviceSeconds();
   result.wallSeconds = secondsSince(start);

@@ -44,16 +44,21 @@ struct RenderOptions {
   // traced; the render goes on after them and ends as if never stopped.
   const SpectralHistogram* resumeFilm = nullptr;
   uint64_t resumedBeams = 0;
-  // Leave the final image's host channels (addHostChannels: error.E and the
-  // spectral block) to the caller, who may compute them on another thread.
-  bool hostChannelsByCaller = false;
+  // Leave the final image's spectral block (addSpectralChannels) to the
+  // caller, who may compute it on another thread.
+  bool spectralByCaller = false;
+  // Download the final film into RenderResult::histogram. A render whose
+  // image is all it writes needs no download (about a copy of the film
+  // and its allocation); the spectral block and the render state do.
+  bool downloadFilm = true;
   std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
   std::function<void(const std::string&)> log;  // device choice and notices
 };
 
 struct RenderResult {
   CompiledScene plan;
-  SpectralHistogram histogram;
+  SpectralHistogram histogram;  // empty unless options.downloadFilm
+  FilmSummary summary;          // counted beams and largest count, from develop
   RenderImage image;
   uint64_t beamsTraced = 0;     // < options.beams only when cancelled
   DeviceKind deviceKind = DeviceKind::Cpu;
@@ -73,10 +78,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
 
 // The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
 // the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.
-// What develop adds to a tracer's image from the downloaded histogram on the
-// host: the per-pixel error estimate and, when `spectral`, the spectral block.
-void addHostChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
-                     const ResolveParameters& parameters, uint64_t beams, bool spectral);
+// The spectral block of the image (one spectral irradiance per bin of the
+// full spectrum), from the downloaded histogram on the host.
+void addSpectralChannels(RenderImage& image, const SpectralHistogram& histogram, const CompiledScene& plan,
+                         const ResolveParameters& parameters);
 
 // About the host memory a render of `plan` holds at its peak (histograms,
 // counters, image), and the check render() makes with it before tracing:

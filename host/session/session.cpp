@@ -239,7 +239,9 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
   options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
   options.beams = job.beamCount();
   options.seed = job.seedValue();
-  options.hostChannelsByCaller = true;  // on the writer thread
+  options.spectralByCaller = true;  // on the writer thread
+  // The state file and the spectral block need the film on the host.
+  options.downloadFilm = options.downloadFilm || options.spectral || !job.state.empty();
   const auto& output = job.output;
   auto preview = output;
   preview.replace_extension(".png");
@@ -296,7 +298,7 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
     const auto held = std::move(lock);  // released when this write ends, not when the future goes
     try {
       const ResolveParameters parameters = resolveParametersFor(scene, result.plan, result.beamsTraced);
-      addHostChannels(result.image, result.histogram, result.plan, parameters, result.beamsTraced, spectral);
+      if (spectral) addSpectralChannels(result.image, result.histogram, result.plan, parameters);
       writeState(result.histogram, result.beamsTraced);
       writeImage(output, result.image,
                  renderMetadata(scene, result.deviceLabel(), aim, seed, firstBeam, result.beamsTraced,
@@ -355,9 +357,8 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
   const ResolveParameters parameters = resolveParametersFor(job.scene, plan, result.beamsTraced);
-  result.image = tracer->develop(parameters);
-  addHostChannels(result.image, state.histogram, plan, parameters, result.beamsTraced,
-                  spectral || job.scene.outputSpectral);
+  result.image = tracer->develop(parameters, &result.summary);
+  if (spectral || job.scene.outputSpectral) addSpectralChannels(result.image, state.histogram, plan, parameters);
   prepareFolder(output);
   const OutputLock lock(output);
   removeStaleTemporaries(output);
