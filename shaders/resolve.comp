@@ -8,6 +8,8 @@
 #include "device_shared.h"
 
 layout(local_size_x_id = kSpecWorkgroupSize) in;
+// Histogram buffers in use (device_shared.h); with one, no switch per read.
+layout(constant_id = kSpecHistogramChunks) const uint histogramChunks = kMaxHistogramChunks + 1u;
 
 layout(set = 0, binding = kBindingResolveConstants, scalar) readonly buffer ResolveConstantsBlock {
   ResolveConstants rc;
@@ -26,6 +28,7 @@ layout(push_constant, scalar) uniform PushBlock {
 };
 
 uint64_t readCount(uint chunk, uint index) {
+  if (histogramChunks == 1u) return histogram[0].counts[index];
   switch (chunk) {
     case 0u: return histogram[0].counts[index];
     case 1u: return histogram[1].counts[index];

@@ -194,7 +194,8 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       tracePipeline_(context, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
                      sizeof(device::TracePush), specConstants(workgroupSize, false, split_, countsBeamsOnDevice(plan), traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
-                       sizeof(device::ResolvePush), {{device::kSpecWorkgroupSize, workgroupSize}}),
+                       sizeof(device::ResolvePush),
+                       {{device::kSpecWorkgroupSize, workgroupSize}, {device::kSpecHistogramChunks, split_.chunkCount}}),
       timestamps_(context, 2) {
   plan_.device.constants.pixelsPerChunk = split_.pixelsPerChunk;
   if (profileStage <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
