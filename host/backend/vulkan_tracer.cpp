@@ -172,6 +172,29 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
         deviceName));
 }
 
+namespace {
+
+// The bytes of the film's stored pixels in each chunk.
+std::vector<uint64_t> filmChunkBytes(const FilmLayout& film, const HistogramSplit& split) {
+  std::vector<uint64_t> bytes;
+  const uint64_t pixelBytes = uint64_t(film.countersPerPixel()) * sizeof(uint64_t);
+  for (uint32_t c = 0; c < split.chunkCount; ++c)
+    bytes.push_back(
+        std::min<uint64_t>(split.pixelsPerChunk, film.storedPixelCount() - uint64_t(c) * split.pixelsPerChunk) *
+        pixelBytes);
+  return bytes;
+}
+
+std::vector<Buffer> takeFilmChunks(const vk_util::Context& context, const std::vector<uint64_t>& bytes,
+                                   TracerBufferPool& buffers) {
+  std::vector<Buffer> chunks;
+  for (size_t c = 0; c < bytes.size(); ++c)
+    chunks.push_back(buffers.take(context, fmt::format("histogram {}", c), bytes[c], MemoryPlacement::DeviceLocal));
+  return chunks;
+}
+
+}  // namespace
+
 VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene& plan, uint32_t workgroupSize,
                            uint32_t specialisedFeatures, std::shared_ptr<TracerBufferPool> buffers,
                            uint32_t profileStage)
@@ -191,6 +214,9 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
       cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", plan.device.cmfTable)),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
+      histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
+      histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
+      firstClear_(std::async(std::launch::async, [this] { clear(); })),
       tracePipeline_(context, embedded::spv_trace_beams(), bindingSpecs(device::kTraceBindings),
                      sizeof(device::TracePush), specConstants(workgroupSize, false, split_, countsBeamsOnDevice(plan), traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
@@ -200,18 +226,10 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
   plan_.device.constants.pixelsPerChunk = split_.pixelsPerChunk;
   if (profileStage <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
   traceConstants_.upload(&plan_.device.constants, sizeof(plan_.device.constants));
-  const uint64_t pixelBytes = uint64_t(plan.film.countersPerPixel()) * sizeof(uint64_t);
-  for (uint32_t c = 0; c < split_.chunkCount; ++c) {
-    const uint64_t pixels =
-        std::min<uint64_t>(split_.pixelsPerChunk, plan.film.storedPixelCount() - uint64_t(c) * split_.pixelsPerChunk);
-    histogramChunks_.push_back(
-        buffers_->take(context, fmt::format("histogram {}", c), pixels * pixelBytes, MemoryPlacement::DeviceLocal));
-    histogramChunkBytes_.push_back(pixels * pixelBytes);
-  }
+  firstClear_.get();  // rethrows the clear's failure
   bindTraceBuffers(tracePipeline_, unusedBeamRecords_);
   for (uint32_t c = 0; c < device::kMaxHistogramChunks; ++c)
     resolvePipeline_.bindBuffer(device::kBindingResolveHistogram, c, histogramChunks_[c < split_.chunkCount ? c : 0]);
-  clear();
 }
 
 VulkanTracer::~VulkanTracer() {

@@ -2,6 +2,7 @@
 // The Vulkan tracer: trace pass (beams -> 64-bit counter chunks) and resolve
 // pass (counters -> XYZ/RGB/irradiance), both on one device.
 #include <cstdint>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -110,8 +111,13 @@ class VulkanTracer final : public Tracer {
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
   vk_util::Buffer cmfTable_;
   vk_util::Buffer stats_;  // TraceStats
-  std::vector<vk_util::Buffer> histogramChunks_;
   std::vector<uint64_t> histogramChunkBytes_;  // the used part of each chunk (a reused one may be larger)
+  std::vector<vk_util::Buffer> histogramChunks_;
+  // The film's first clear, on another thread while the trace pipeline
+  // compiles (both take one core for tens of ms on lavapipe); the
+  // constructor waits for it. Declared before the pipelines, so that if
+  // one of them fails to build, the clear ends before the buffers go.
+  std::future<void> firstClear_;
   vk_util::ComputePipeline tracePipeline_;
   vk_util::ComputePipeline resolvePipeline_;
   vk_util::TimestampQueries timestamps_;
