@@ -71,13 +71,8 @@ namespace {
 
 // 2D dispatch shape for `count` invocations: rows of at most the device's
 // group-count limit.
-struct DispatchShape {
-  uint32_t groupsX, groupsY, invocationsPerRow;
-};
-DispatchShape dispatchShape(const vk_util::Context& context, uint64_t count, uint32_t workgroupSize) {
-  const uint64_t groups = (count + workgroupSize - 1) / workgroupSize;
-  const uint32_t groupsX = uint32_t(std::min<uint64_t>(groups, context.info().maxComputeWorkGroupCount[0]));
-  return {groupsX, uint32_t((groups + groupsX - 1) / groupsX), groupsX * workgroupSize};
+vk_util::DispatchGrid dispatchShape(const vk_util::Context& context, uint64_t count, uint32_t workgroupSize) {
+  return vk_util::dispatchGridFor(count, workgroupSize, context.info().maxComputeWorkGroupCount[0]);
 }
 
 // The scene specialisation constants of trace_beams.comp (device_shared.h,
@@ -274,7 +269,7 @@ uint64_t VulkanTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::
   while (done < beamCount) {
     if (cancel && cancel->load()) break;
     const uint64_t count = std::min(beamCount - done, maxBeamsPerDispatch());
-    const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
+    const vk_util::DispatchGrid shape = dispatchShape(context_, count, workgroupSize_);
     const device::TracePush push{firstBeam + done, uint32_t(count), shape.invocationsPerRow};
     context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
       timestamps_.reset(cb);
@@ -295,7 +290,7 @@ std::vector<device::BeamRecord> VulkanTracer::traceRecorded(uint64_t firstBeam, 
   Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(device::BeamRecord), 16), {},
                  MemoryPlacement::HostVisible);
   bindTraceBuffers(recorder, records);  // the counters and stats are left untouched in record mode
-  const DispatchShape shape = dispatchShape(context_, count, workgroupSize_);
+  const vk_util::DispatchGrid shape = dispatchShape(context_, count, workgroupSize_);
   const device::TracePush push{firstBeam, count, shape.invocationsPerRow};
   context_.submitAndWait([&](const vk::raii::CommandBuffer& cb) { recorder.recordDispatch(cb, &push, shape.groupsX, shape.groupsY); });
   std::vector<device::BeamRecord> result(count);

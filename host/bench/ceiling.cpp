@@ -128,16 +128,15 @@ CeilingResult traceCeilingOnVulkan(const vk_util::Context& context, const Ceilin
   const uint32_t maxGroupsX = context.info().maxComputeWorkGroupCount[0];
   for (uint64_t done = 0; done < beams;) {
     const uint64_t count = std::min<uint64_t>(beams - done, uint64_t(1) << 30);
-    const uint64_t groups = (count + kWorkgroup - 1) / kWorkgroup;
-    const uint32_t groupsX = uint32_t(std::min<uint64_t>(groups, maxGroupsX));
+    const vk_util::DispatchGrid grid = vk_util::dispatchGridFor(count, kWorkgroup, maxGroupsX);
     device::CeilingPush push = scene.geometry;
     push.beamBase = uint32_t(done);
     push.beamCount = uint32_t(count);
-    push.beamsPerRow = groupsX * kWorkgroup;
+    push.beamsPerRow = grid.invocationsPerRow;
     context.submitAndWait([&](const vk::raii::CommandBuffer& cb) {
       timestamps.reset(cb);
       timestamps.write(cb, 0);
-      pipeline.recordDispatch(cb, &push, groupsX, uint32_t((groups + groupsX - 1) / groupsX));
+      pipeline.recordDispatch(cb, &push, grid.groupsX, grid.groupsY);
       timestamps.write(cb, 1);
     });
     const auto ns = timestamps.readNanoseconds();

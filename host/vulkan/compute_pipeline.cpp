@@ -211,4 +211,11 @@ void ComputePipeline::recordDispatch(const vk::raii::CommandBuffer& cmd, const v
   cmd.dispatch(groupsX, groupsY, groupsZ);
 }
 
+DispatchGrid dispatchGridFor(uint64_t invocations, uint32_t workgroupSize, uint32_t maxGroupsX) {
+  const uint64_t groups = std::max<uint64_t>(1, (invocations + workgroupSize - 1) / workgroupSize);
+  const uint64_t rows = (groups + maxGroupsX - 1) / maxGroupsX;
+  const uint32_t groupsX = uint32_t((groups + rows - 1) / rows);
+  return {groupsX, uint32_t(rows), groupsX * workgroupSize};
+}
+
 }  // namespace spectrace::vk_util

@@ -29,6 +29,18 @@ struct SpecConstant {
   uint32_t value;
 };
 
+// A 1D range of `invocations` laid out as a 2D grid of workgroups (one
+// dimension stops at maxComputeWorkGroupCount[0] = `maxGroupsX`):
+// invocation (x, y) is number y * invocationsPerRow + x. As few rows as the
+// limit allows, each as short as it can be, so fewer than `groupsY`
+// workgroups find nothing to do. (Rows filled to the limit left up to a
+// whole row idle: 2^22 invocations in groups of 64 gave 2 x 65535 groups,
+// and lavapipe took 0.15 s over the 65534 empty ones.)
+struct DispatchGrid {
+  uint32_t groupsX, groupsY, invocationsPerRow;
+};
+DispatchGrid dispatchGridFor(uint64_t invocations, uint32_t workgroupSize, uint32_t maxGroupsX);
+
 class ComputePipeline {
  public:
   // spirv: SPIR-V bytes (a whole number of 4-byte words, entry point "main").

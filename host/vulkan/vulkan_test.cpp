@@ -505,3 +505,31 @@ TEST_F(VulkanCompute, UnwrittenTimestampIsAnErrorNotAHang) {
 
 }  // namespace
 }  // namespace spectrace::vk_util
+
+namespace spectrace::vk_util {
+namespace {
+
+// The grid covers every invocation, stays within the limit, and leaves
+// fewer than one workgroup per row idle (never a whole row), including at
+// the sizes that once left a row of 65534 empty groups.
+TEST(DispatchGrid, CoversTheRangeWithFewerIdleGroupsThanRows) {
+  constexpr uint32_t kMaxX = 65535;
+  for (uint32_t workgroup : {1u, 64u, 256u}) {
+    for (uint64_t invocations :
+         {uint64_t(1), uint64_t(63), uint64_t(65535) * 64, uint64_t(65536) * 64, uint64_t(1) << 22,
+          uint64_t(1) << 23, uint64_t(11'007'525), uint64_t(1) << 31}) {
+      const DispatchGrid grid = dispatchGridFor(invocations, workgroup, kMaxX);
+      const uint64_t groups = (invocations + workgroup - 1) / workgroup;
+      const uint64_t launched = uint64_t(grid.groupsX) * grid.groupsY;
+      SCOPED_TRACE(::testing::Message() << invocations << " invocations in groups of " << workgroup);
+      EXPECT_LE(grid.groupsX, kMaxX);
+      EXPECT_EQ(grid.invocationsPerRow, grid.groupsX * workgroup);
+      EXPECT_GE(launched, groups);                   // every invocation has a slot
+      EXPECT_LT(launched - groups, grid.groupsY);    // fewer idle groups than rows
+      EXPECT_EQ(grid.groupsY, (groups + kMaxX - 1) / kMaxX);  // no more rows than needed
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spectrace::vk_util
