@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <stdexcept>
 #include <thread>
+#include <new>
+#include <cstdint>
 
 #include <sys/mman.h>
 
@@ -13,18 +15,31 @@ namespace spectrace {
 
 template <typename T>
 T* HugePageAllocator<T>::allocate(size_t n) {
-  const size_t bytes = (n * sizeof(T) + kAlignment - 1) / kAlignment * kAlignment;
-  void* p = ::operator new(bytes, std::align_val_t(kAlignment));
-  if (bytes >= kAlignment) ::madvise(p, bytes, MADV_HUGEPAGE);  // a hint: failure changes nothing
-  return static_cast<T*>(p);
+  const size_t bytes = mappedBytes(n);
+  // Map an extra 2 MiB and trim, so the array starts on a 2 MiB boundary.
+  void* mapped = ::mmap(nullptr, bytes + kAlignment, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (mapped == MAP_FAILED) throw std::bad_alloc();
+  const auto start = reinterpret_cast<uintptr_t>(mapped);
+  const uintptr_t aligned = (start + kAlignment - 1) / kAlignment * kAlignment;
+  if (aligned > start) ::munmap(mapped, aligned - start);
+  if (const size_t tail = start + bytes + kAlignment - (aligned + bytes); tail > 0)
+    ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
+  ::madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);  // a hint: failure changes nothing
+  return reinterpret_cast<T*>(aligned);
 }
+
+template <typename T>
+void HugePageAllocator<T>::deallocate(T* p, size_t n) {
+  ::munmap(p, mappedBytes(n));
+}
+
 template struct HugePageAllocator<uint64_t>;
 
 CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
       profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageFull)),
-      counters_(plan.film.storedCounterCount(), 0) {
+      counters_(plan.film.storedCounterCount()) {  // zero, untouched (HugePageAllocator)
   // One chunk holds every stored pixel.
   plan_.device.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
   // The profile's counting stage counts bins only (shaders/profile.h).

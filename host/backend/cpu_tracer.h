@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "backend/tracer.h"
@@ -13,10 +15,13 @@
 
 namespace spectrace {
 
-// Allocates large arrays on 2 MiB boundaries and asks the kernel for huge
-// pages (madvise(MADV_HUGEPAGE), a hint; "madvise" is Debian's default
-// transparent-huge-page mode): counts land all over a film of up to
+// Allocates large arrays on 2 MiB boundaries from mmap and asks the kernel
+// for huge pages (madvise(MADV_HUGEPAGE), a hint; "madvise" is Debian's
+// default transparent-huge-page mode): counts land all over a film of up to
 // gigabytes, and with 4 KiB pages nearly every one is also a TLB miss.
+// mmap's pages read as zero, so value-initialised elements (vector(n)) are
+// not written here: the first touch, and the kernel's zeroing, happen in
+// the tracing threads, in parallel, instead of in one memset before them.
 template <typename T>
 struct HugePageAllocator {
   using value_type = T;
@@ -24,10 +29,21 @@ struct HugePageAllocator {
   template <typename U>
   HugePageAllocator(const HugePageAllocator<U>&) {}
   T* allocate(size_t n);
-  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(kAlignment)); }
+  void deallocate(T* p, size_t n);
+  // Value-initialisation of an arithmetic T: the memory is already zero.
+  template <typename U>
+  void construct(U* p) noexcept {
+    static_assert(std::is_arithmetic_v<U>);
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
   template <typename U>
   bool operator==(const HugePageAllocator<U>&) const { return true; }
   static constexpr size_t kAlignment = size_t(2) << 20;
+  static size_t mappedBytes(size_t n) { return (n * sizeof(T) + kAlignment - 1) / kAlignment * kAlignment; }
 };
 
 class CpuTracer final : public Tracer {
