@@ -134,7 +134,14 @@ TEST_F(InputLimits, AFilmThatDoesNotFitInMemoryIsRefusedBeforeTracing) {
   const Scene scene = parseScene(sceneText(16384, kMaxBins, R"({"blackbody_k": 3000})"), dir / "huge.json");
   const CompiledScene plan = compileScene(scene, 1, {});
   const uint64_t bytes = filmHostBytes(plan, DeviceKind::Cpu, false);
-  EXPECT_GE(bytes, uint64_t(16384) * 16384 * kMaxBins * 8);
+  const uint64_t histogramBytes = uint64_t(16384) * 16384 * kMaxBins * 8;
+  EXPECT_GE(bytes, 2 * histogramBytes);  // the result's histogram and the downloaded one
+  // Without a download only the CPU reference's counters (the stored
+  // pixels and bins) hold the film; still far too large here.
+  const uint64_t withoutDownload = filmHostBytes(plan, DeviceKind::Cpu, false, false);
+  EXPECT_EQ(bytes - withoutDownload, 2 * histogramBytes);
+  EXPECT_GE(withoutDownload, plan.film.storedCounterCount() * sizeof(uint64_t));
+  EXPECT_THROW(checkFilmFitsMemory(scene, plan, DeviceKind::Cpu, false, false), SceneError);
   const std::string message = errorOf([&] { checkFilmFitsMemory(scene, plan, DeviceKind::Cpu, false); });
   EXPECT_THAT(message, HasSubstr("huge.json: /camera/sensor/pixels: a film of 16384x16384 pixels x 100000 bins needs about " +
                                  std::to_string(bytes) + " bytes"));

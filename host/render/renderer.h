@@ -87,9 +87,13 @@ void addSpectralChannels(RenderImage& image, const SpectralHistogram& histogram,
 // counters, image), and the check render() makes with it before tracing:
 // SceneError naming /camera/sensor/pixels, the bytes needed and the bytes
 // available (MemAvailable, cgroup memory.max, ulimit -v / -d), not a
-// bad_alloc mid-render.
-uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral);
-void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral);
+// bad_alloc mid-render. `downloadsFilm`: the render downloads the film
+// (RenderOptions::downloadFilm, or the spectral block), which holds
+// histograms of the whole film on the host; without it only the CPU
+// reference's counters and the image are held.
+uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral, bool downloadsFilm = true);
+void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral,
+                         bool downloadsFilm = true);
 
 ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams);
 
