@@ -120,20 +120,4 @@ std::vector<double> binCentresNm(double lambdaMinNm, double lambdaMaxNm, uint32_
   return centres;
 }
 
-std::vector<float> developIrradianceError(const SpectralHistogram& histogram, const ResolveParameters& parameters,
-                                          uint64_t beams) {
-  const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
-  std::vector<float> error(pixels, 0.0f);
-  if (beams == 0) return error;
-  // The shape checks and the per-pixel bounds of estimatedRelativeVariance.
-  const std::vector<double> relativeVariance = estimatedRelativeVariance(histogram, beams);
-  for (size_t p = 0; p < pixels; ++p) {
-    if (!std::isfinite(relativeVariance[p])) continue;
-    uint64_t total = 0;
-    for (uint32_t b = 0; b < histogram.bins; ++b) total += histogram.counts[p * histogram.bins + b];
-    error[p] = float(std::sqrt(relativeVariance[p]) * (double(total) * parameters.irradiancePerCount));
-  }
-  return error;
-}
-
 }  // namespace spectrace

@@ -66,11 +66,4 @@ std::vector<float> developSpectrum(const SpectralHistogram& histogram, const Res
 // The centre of each bin in nm (bins of equal width from lambdaMinNm).
 std::vector<double> binCentresNm(double lambdaMinNm, double lambdaMaxNm, uint32_t bins);
 
-// Estimated standard error of each pixel's irradiance in W/m^2, from the
-// render's own counts: sqrt(estimatedRelativeVariance) x irradiance, with
-// the irradiance computed in double from the counts. 0 for an empty pixel
-// (no counts, no estimate) and for beams == 0.
-std::vector<float> developIrradianceError(const SpectralHistogram& histogram, const ResolveParameters& parameters,
-                                          uint64_t beams);
-
 }  // namespace spectrace
