@@ -69,8 +69,7 @@ std::vector<vk_util::BindingSpec> bindingSpecs(std::span<const device::BindingSl
 
 namespace {
 
-// 2D dispatch shape for `count` invocations: rows of at most the device's
-// group-count limit.
+// dispatchGridFor with this device's group-count limit.
 vk_util::DispatchGrid dispatchShape(const vk_util::Context& context, uint64_t count, uint32_t workgroupSize) {
   return vk_util::dispatchGridFor(count, workgroupSize, context.info().maxComputeWorkGroupCount[0]);
 }
@@ -404,6 +403,7 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters, FilmSumma
   image.xyz.assign(plan_.film.pixelCount() * 3, 0.0f);
   image.irradiance.assign(plan_.film.pixelCount(), 0.0f);
   if (parameters.beams > 0) image.irradianceError.assign(plan_.film.pixelCount(), 0.0f);
+  uint64_t totalCount = 0;  // over every pixel's bins
   FilmSummary totals;
   std::vector<device::ResolvedPixel> slice(maxSlice);
   double deviceSeconds = 0.0;
@@ -431,14 +431,14 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters, FilmSumma
         image.irradianceError[p] = irradianceErrorOfPixel(slice[i].totalCount, slice[i].squaredWeightCount,
                                                           parameters.beams, plan_.film.weightUnits,
                                                           parameters.irradiancePerCount, p);
-      totals.countedBeams += slice[i].totalCount;
+      totalCount += slice[i].totalCount;
       totals.largestCount = std::max(totals.largestCount, slice[i].largestCount);
     }
   }
   developDeviceSeconds_ += deviceSeconds;
   if (summary) {
     // Counted on the device, or (every beam adds one unit) the bins' sum.
-    totals.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : totals.countedBeams;
+    totals.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : totalCount;
     *summary = totals;
   }
   buffers_->giveBack("resolve constants", std::move(constantsBuffer));

@@ -297,8 +297,9 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
                 lock]() mutable -> RenderResult {
     const auto held = std::move(lock);  // released when this write ends, not when the future goes
     try {
-      const ResolveParameters parameters = resolveParametersFor(scene, result.plan, result.beamsTraced);
-      if (spectral) addSpectralChannels(result.image, result.histogram, result.plan, parameters);
+      if (spectral)
+        addSpectralChannels(result.image, result.histogram, result.plan,
+                            resolveParametersFor(scene, result.plan, result.beamsTraced));
       writeState(result.histogram, result.beamsTraced);
       writeImage(output, result.image,
                  renderMetadata(scene, result.deviceLabel(), aim, seed, firstBeam, result.beamsTraced,

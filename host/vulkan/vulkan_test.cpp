@@ -503,12 +503,6 @@ TEST_F(VulkanCompute, UnwrittenTimestampIsAnErrorNotAHang) {
   EXPECT_THAT(vulkanErrorOf([&] { TimestampQueries(*ctx, 0); }), HasSubstr("0 queries"));
 }
 
-}  // namespace
-}  // namespace spectrace::vk_util
-
-namespace spectrace::vk_util {
-namespace {
-
 // The grid covers every invocation, stays within the limit, and leaves
 // fewer than one workgroup per row idle (never a whole row), including at
 // the sizes that once left a row of 65534 empty groups.
