@@ -33,14 +33,20 @@ using vec3 = glm::vec3;
 #endif
 
 START_BINDING(TraceBinding)
-  kBindingTraceConstants = 0,
+  kBindingTraceConstants = 0,  // a uniform buffer
   kBindingLights = 1,
   kBindingSpectralIntervals = 2,
   kBindingHistogram = 3,    // array of kMaxHistogramChunks
   kBindingBeamRecords = 4,  // only written with kSpecRecordBeams
   kBindingCmfTable = 5,     // vec3 per node, for exact colour
   kBindingTraceStats = 6,   // TraceStats
-  kBindingAliasColumns = 7  // AliasColumn: the light choice's, then each light's spectral table's
+  kBindingAliasColumns = 7, // AliasColumn: the light choice's, then each light's spectral table's
+  // The same four tables as uniform buffers, read instead of the storage
+  // buffers above when kSpecUniformTables is 1 (host/backend/uniform_tables.h).
+  kBindingLightsUniform = 8,
+  kBindingSpectralIntervalsUniform = 9,
+  kBindingCmfTableUniform = 10,
+  kBindingAliasColumnsUniform = 11
 END_BINDING();
 START_BINDING(ResolveBinding)
   kBindingResolveConstants = 0,
@@ -92,7 +98,13 @@ START_BINDING(SpecConstantId)
   kSpecAim = 6,
   kSpecHistogramChunks = 7,  // histogram buffers in use; kMaxHistogramChunks + 1: decided at run time
   kSpecCountBeams = 8,       // 0: every weight is one unit, so the host sums the bins instead
-  kSpecProfileStage = 9      // bench only (shaders/profile.h): kProfileStageFull runs the whole kernel
+  kSpecProfileStage = 9,     // bench only (shaders/profile.h): kProfileStageFull runs the whole kernel
+  kSpecUniformTables = 10,   // 1: read the tables from their uniform buffers (0: the storage buffers)
+  // Element counts of the uniform tables' arrays (1 when unused).
+  kSpecUniformLights = 11,
+  kSpecUniformIntervals = 12,
+  kSpecUniformCmfNodes = 13,
+  kSpecUniformAliasColumns = 14
 END_BINDING();
 // Stages of the bench's cost profile (shaders/profile.h), each adding one
 // part of the kernel to the one before.
@@ -317,11 +329,21 @@ struct CeilingPush {
 struct BindingSlot {
   uint32_t binding;
   uint32_t count;  // > 1: an array of storage buffers
+  bool uniform = false;  // a uniform buffer, not a storage buffer
 };
 inline constexpr BindingSlot kTraceBindings[] = {
-    {kBindingTraceConstants, 1}, {kBindingLights, 1},      {kBindingSpectralIntervals, 1},
-    {kBindingHistogram, kMaxHistogramChunks},               {kBindingBeamRecords, 1},
-    {kBindingCmfTable, 1},       {kBindingTraceStats, 1},       {kBindingAliasColumns, 1}};
+    {kBindingTraceConstants, 1, true},
+    {kBindingLights, 1},
+    {kBindingSpectralIntervals, 1},
+    {kBindingHistogram, kMaxHistogramChunks},
+    {kBindingBeamRecords, 1},
+    {kBindingCmfTable, 1},
+    {kBindingTraceStats, 1},
+    {kBindingAliasColumns, 1},
+    {kBindingLightsUniform, 1, true},
+    {kBindingSpectralIntervalsUniform, 1, true},
+    {kBindingCmfTableUniform, 1, true},
+    {kBindingAliasColumnsUniform, 1, true}};
 inline constexpr BindingSlot kCeilingBindings[] = {{kBindingCeilingCdf, 1}, {kBindingCeilingHistogram, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},

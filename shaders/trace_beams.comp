@@ -32,7 +32,10 @@ layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageF
 #define SPECTRACE_SQUARED_WEIGHTS (aimMode != 0u && constants.weightUnits != 1u)
 #define SPECTRACE_SINGLE_CHUNK (histogramChunks == 1u)
 
-layout(set = 0, binding = kBindingTraceConstants, scalar) readonly buffer TraceConstantsBlock {
+// The constants, read by every beam, in a uniform buffer: lavapipe loads
+// uniform-buffer values once per group of lanes; storage-buffer loads go
+// lane by lane (whole process 22% faster on the throughput scene, 2026-11-23).
+layout(set = 0, binding = kBindingTraceConstants, scalar) uniform TraceConstantsBlock {
   TraceConstants constants;
 };
 layout(set = 0, binding = kBindingLights, scalar) readonly buffer LightBlock {
@@ -53,6 +56,25 @@ layout(set = 0, binding = kBindingAliasColumns, scalar) readonly buffer AliasBlo
 layout(set = 0, binding = kBindingCmfTable, scalar) readonly buffer CmfBlock {
   vec3 cmfTable[];
 };
+// The tables again as uniform buffers, sized by the host (kSpecUniform*),
+// read instead of the storage buffers above when uniformTables is 1.
+layout(constant_id = kSpecUniformTables) const uint uniformTables = 0u;
+layout(constant_id = kSpecUniformLights) const uint uniformLightCount = 1u;
+layout(constant_id = kSpecUniformIntervals) const uint uniformIntervalCount = 1u;
+layout(constant_id = kSpecUniformCmfNodes) const uint uniformCmfNodeCount = 1u;
+layout(constant_id = kSpecUniformAliasColumns) const uint uniformAliasColumnCount = 1u;
+layout(set = 0, binding = kBindingLightsUniform, scalar) uniform LightUniformBlock {
+  LightRecord uniformLights[uniformLightCount];
+};
+layout(set = 0, binding = kBindingSpectralIntervalsUniform, scalar) uniform SpectralUniformBlock {
+  SpectralInterval uniformIntervals[uniformIntervalCount];
+};
+layout(set = 0, binding = kBindingCmfTableUniform, scalar) uniform CmfUniformBlock {
+  vec3 uniformCmfTable[uniformCmfNodeCount];
+};
+layout(set = 0, binding = kBindingAliasColumnsUniform, scalar) uniform AliasUniformBlock {
+  AliasColumn uniformAliasColumns[uniformAliasColumnCount];
+};
 layout(set = 0, binding = kBindingTraceStats, scalar) buffer TraceStatsBlock {
   TraceStats stats;
 };
@@ -62,10 +84,24 @@ layout(push_constant, scalar) uniform PushBlock {
 
 // The includer contract (kernel_interface.h).
 #include "philox.glsl"
-AliasColumn readAliasColumn(uint i) { return aliasColumns[i]; }
-LightRecord readLight(uint i) { return lights[i]; }
-SpectralInterval readInterval(uint i) { return intervals[i]; }
-vec3 readCmf(uint i) { return cmfTable[i]; }
+// (Returns, not a ?: of the two loads: glslang gives the uniform and storage
+// struct types apart, and a ?: of them stored the one as the other.)
+AliasColumn readAliasColumn(uint i) {
+  if (uniformTables != 0u) return uniformAliasColumns[i];
+  return aliasColumns[i];
+}
+LightRecord readLight(uint i) {
+  if (uniformTables != 0u) return uniformLights[i];
+  return lights[i];
+}
+SpectralInterval readInterval(uint i) {
+  if (uniformTables != 0u) return uniformIntervals[i];
+  return intervals[i];
+}
+vec3 readCmf(uint i) {
+  if (uniformTables != 0u) return uniformCmfTable[i];
+  return cmfTable[i];
+}
 // Constant indices only: no non-uniform descriptor indexing needed. With
 // one chunk there is no switch: on lavapipe each case of a divergent switch
 // costs a pass over the lanes.

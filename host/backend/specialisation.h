@@ -13,7 +13,12 @@ enum SpecialisedFeature : uint32_t {
   kSpecialisePinhole = 1u << 2,      // bare or pinhole branch fixed
   kSpecialiseExactColour = 1u << 3,  // per-beam colour path fixed on or off
   kSpecialiseAim = 1u << 4,          // aiming code compiled out when no light is aimed
-  kSpecialiseAll = (1u << 5) - 1,
+  // The light, interval, CMF and alias tables read from uniform buffers
+  // when they fit (host/backend/uniform_tables.h); not a scene feature, but
+  // like one it is fixed at compile time, and the general pipeline keeps
+  // the storage-buffer path it is checked against.
+  kSpecialiseUniformTables = 1u << 5,
+  kSpecialiseAll = (1u << 6) - 1,
 };
 
 }  // namespace spectrace

@@ -63,7 +63,7 @@ uint64_t TracerBufferPool::allocations() const {
 // A pipeline's descriptor layout from its one binding table (device_shared.h).
 std::vector<vk_util::BindingSpec> bindingSpecs(std::span<const device::BindingSlot> table) {
   std::vector<vk_util::BindingSpec> specs;
-  for (const auto& slot : table) specs.push_back({slot.binding, slot.count});
+  for (const auto& slot : table) specs.push_back({slot.binding, slot.count, slot.uniform});
   return specs;
 }
 
@@ -79,7 +79,7 @@ vk_util::DispatchGrid dispatchShape(const vk_util::Context& context, uint64_t co
 // the general pipeline's (decide at run time); and the profile stage (the
 // profile's counting stage has exact colour off).
 std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan, uint32_t features,
-                                                       uint32_t profileStage) {
+                                                       uint32_t profileStage, const UniformTableLayout& tables) {
   uint32_t types = 0;
   bool aimed = false;
   for (const auto& light : plan.device.lights) {
@@ -94,7 +94,12 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
                                          ? 0u
                                          : pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},
           {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)},
-          {device::kSpecProfileStage, std::min<uint32_t>(profileStage, device::kProfileStageFull)}};
+          {device::kSpecProfileStage, std::min<uint32_t>(profileStage, device::kProfileStageFull)},
+          {device::kSpecUniformTables, tables.inUniform ? 1u : 0u},
+          {device::kSpecUniformLights, tables.lights},
+          {device::kSpecUniformIntervals, tables.intervals},
+          {device::kSpecUniformCmfNodes, tables.cmfNodes},
+          {device::kSpecUniformAliasColumns, tables.aliasColumns}};
 }
 
 // Whether the trace pass counts counted beams itself: only when beams carry
@@ -196,17 +201,20 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       buffers_(poolOrOwn(std::move(buffers))),
       plan_(plan),
       workgroupSize_(workgroupSize),
-      traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures, profileStage)),
+      uniformTables_(uniformTableLayout(plan.device, context.info().maxUniformBufferRange,
+                                        (specialisedFeatures & kSpecialiseUniformTables) != 0)),
+      traceSpecialisation_(traceSpecialisation(plan, specialisedFeatures, profileStage, uniformTables_)),
       split_((checkSceneFitsDevice(plan, context.info().maxStorageBufferRange, context.info().deviceLocalHeapBytes,
                                    context.info().name),
               HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
                                         context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize))),
       traceConstants_(buffers_->take(context, "trace constants", sizeof(device::TraceConstants), MemoryPlacement::DeviceLocal)),
-      lights_(uploadedBuffer(*buffers_, context, "lights", plan.device.lights)),
-      intervals_(uploadedBuffer(*buffers_, context, "intervals", plan.device.intervals)),
-      aliasColumns_(uploadedBuffer(*buffers_, context, "alias columns", plan.device.aliasColumns)),
+      lights_(uploadedBuffer(*buffers_, context, "lights", paddedTable(plan.device.lights, uniformTables_.lights))),
+      intervals_(uploadedBuffer(*buffers_, context, "intervals", paddedTable(plan.device.intervals, uniformTables_.intervals))),
+      aliasColumns_(uploadedBuffer(*buffers_, context, "alias columns",
+                                   paddedTable(plan.device.aliasColumns, uniformTables_.aliasColumns))),
       unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
-      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", plan.device.cmfTable)),
+      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", paddedTable(plan.device.cmfTable, uniformTables_.cmfNodes))),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
@@ -245,6 +253,14 @@ void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Bu
   pipeline.bindBuffer(device::kBindingAliasColumns, 0, aliasColumns_);
   pipeline.bindBuffer(device::kBindingBeamRecords, 0, beamRecords);
   pipeline.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
+  // The uniform copies: the padded tables (the same buffers), or their first
+  // element when the storage buffers are read.
+  pipeline.bindBuffer(device::kBindingLightsUniform, 0, lights_, 0, uniformTables_.lights * sizeof(device::LightRecord));
+  pipeline.bindBuffer(device::kBindingSpectralIntervalsUniform, 0, intervals_, 0,
+                      uniformTables_.intervals * sizeof(device::SpectralInterval));
+  pipeline.bindBuffer(device::kBindingCmfTableUniform, 0, cmfTable_, 0, uniformTables_.cmfNodes * sizeof(glm::vec3));
+  pipeline.bindBuffer(device::kBindingAliasColumnsUniform, 0, aliasColumns_, 0,
+                      uniformTables_.aliasColumns * sizeof(device::AliasColumn));
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.

@@ -15,6 +15,7 @@
 #include "film/spectral_histogram.h"
 #include "compile/compile_scene.h"
 #include "backend/specialisation.h"
+#include "backend/uniform_tables.h"
 #include "vulkan/buffer.h"
 #include "vulkan/compute_pipeline.h"
 #include "vulkan/context.h"
@@ -102,6 +103,7 @@ class VulkanTracer final : public Tracer {
   std::shared_ptr<TracerBufferPool> buffers_;  // declared before the buffers taken from it
   CompiledScene plan_;
   uint32_t workgroupSize_;
+  UniformTableLayout uniformTables_;  // where the trace reads its tables (declared before them)
   std::vector<vk_util::SpecConstant> traceSpecialisation_;  // the scene's trace specialisation constants
   HistogramSplit split_;
   vk_util::Buffer traceConstants_;

@@ -51,7 +51,7 @@ Buffer::Buffer(const Context& context, vk::DeviceSize bytes, vk::BufferUsageFlag
     buffer_ = vk::raii::Buffer(
         context.device(),
         vk::BufferCreateInfo{.size = allocBytes,
-                             .usage = usage | vk::BufferUsageFlagBits::eStorageBuffer |
+                             .usage = usage | vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformBuffer |
                                       vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
                              .sharingMode = vk::SharingMode::eExclusive});
   } catch (const vk::SystemError& e) {

@@ -10,6 +10,10 @@ namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203;
 
+vk::DescriptorType descriptorTypeOf(const BindingSpec& b) {
+  return b.uniform ? vk::DescriptorType::eUniformBuffer : vk::DescriptorType::eStorageBuffer;
+}
+
 std::string declaredBindings(const std::vector<BindingSpec>& bindings) {
   std::string out;
   for (const auto& b : bindings)
@@ -35,7 +39,7 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
                                   "(found 0x{:08x})",
                                   kSpirvMagic, words[0]));
 
-  uint32_t totalDescriptors = 0;
+  uint32_t totalDescriptors = 0, uniformDescriptors = 0;
   std::vector<vk::DescriptorSetLayoutBinding> layoutBindings;
   for (size_t i = 0; i < bindings_.size(); ++i) {
     const BindingSpec& b = bindings_[i];
@@ -44,16 +48,22 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
       if (bindings_[j].binding == b.binding)
         throw VulkanError(fmt::format("ComputePipeline: binding {} is declared twice", b.binding));
     totalDescriptors += b.count;
+    if (b.uniform) uniformDescriptors += b.count;
     layoutBindings.push_back(vk::DescriptorSetLayoutBinding{.binding = b.binding,
-                                                            .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                            .descriptorType = descriptorTypeOf(b),
                                                             .descriptorCount = b.count,
                                                             .stageFlags = vk::ShaderStageFlagBits::eCompute});
     bound_.emplace_back(b.count, false);
   }
-  if (totalDescriptors > info.maxPerStageDescriptorStorageBuffers)
+  const uint32_t storageDescriptors = totalDescriptors - uniformDescriptors;
+  if (storageDescriptors > info.maxPerStageDescriptorStorageBuffers)
     throw VulkanError(fmt::format("ComputePipeline: {} storage buffer descriptors exceed the "
                                   "maxPerStageDescriptorStorageBuffers ({}) of Vulkan device '{}'",
-                                  totalDescriptors, info.maxPerStageDescriptorStorageBuffers, info.name));
+                                  storageDescriptors, info.maxPerStageDescriptorStorageBuffers, info.name));
+  if (uniformDescriptors > info.maxPerStageDescriptorUniformBuffers)
+    throw VulkanError(fmt::format("ComputePipeline: {} uniform buffer descriptors exceed the "
+                                  "maxPerStageDescriptorUniformBuffers ({}) of Vulkan device '{}'",
+                                  uniformDescriptors, info.maxPerStageDescriptorUniformBuffers, info.name));
   if (pushConstantBytes % 4 != 0 || pushConstantBytes > info.maxPushConstantsSize)
     throw VulkanError(fmt::format("ComputePipeline: {} bytes of push constants; they must be a multiple of 4 and at "
                                   "most the maxPushConstantsSize ({}) of Vulkan device '{}'",
@@ -68,7 +78,7 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
   append(0xffffffffu);  // separates the code from the rest
   append(pushConstantBytes);
   append(uint32_t(bindings_.size()));
-  for (const auto& b : bindings_) append(b.binding), append(b.count);
+  for (const auto& b : bindings_) append(b.binding), append(b.count), append(b.uniform ? 1u : 0u);
   append(uint32_t(specConstants.size()));
   for (const auto& c : specConstants) append(c.id), append(c.value);
   compiled_ = std::static_pointer_cast<Compiled>(context.sharedPipeline(key, [&]() -> std::shared_ptr<void> {
@@ -121,14 +131,17 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const unsigne
 
   if (totalDescriptors > 0) {
     try {
-      const vk::DescriptorPoolSize poolSize{.type = vk::DescriptorType::eStorageBuffer,
-                                            .descriptorCount = totalDescriptors};
+      std::vector<vk::DescriptorPoolSize> poolSizes;
+      if (storageDescriptors > 0)
+        poolSizes.push_back({.type = vk::DescriptorType::eStorageBuffer, .descriptorCount = storageDescriptors});
+      if (uniformDescriptors > 0)
+        poolSizes.push_back({.type = vk::DescriptorType::eUniformBuffer, .descriptorCount = uniformDescriptors});
       // FreeDescriptorSet: the RAII set frees itself before the pool goes.
       pool_ = vk::raii::DescriptorPool(
           device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
                                                .maxSets = 1,
-                                               .poolSizeCount = 1,
-                                               .pPoolSizes = &poolSize});
+                                               .poolSizeCount = uint32_t(poolSizes.size()),
+                                               .pPoolSizes = poolSizes.data()});
       const vk::DescriptorSetLayout rawSetLayout = *compiled_->setLayout;
       vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
                                                                            .descriptorSetCount = 1,
@@ -156,18 +169,21 @@ void ComputePipeline::bindBuffer(uint32_t binding, uint32_t arrayElement, const 
   if (offset >= buffer.size())
     throw VulkanError(fmt::format("{}: offset {} is at or past the end of the {}-byte buffer", where, offset,
                                   buffer.size()));
-  if (offset % info.minStorageBufferOffsetAlignment != 0)
-    throw VulkanError(fmt::format("{}: offset {} is not a multiple of the minStorageBufferOffsetAlignment ({}) of "
+  const char* kind = it->uniform ? "Uniform" : "Storage";
+  const uint64_t alignment = it->uniform ? info.minUniformBufferOffsetAlignment : info.minStorageBufferOffsetAlignment;
+  if (offset % alignment != 0)
+    throw VulkanError(fmt::format("{}: offset {} is not a multiple of the min{}BufferOffsetAlignment ({}) of "
                                   "Vulkan device '{}'",
-                                  where, offset, info.minStorageBufferOffsetAlignment, info.name));
+                                  where, offset, kind, alignment, info.name));
   if (range != VK_WHOLE_SIZE && (range == 0 || range > buffer.size() - offset))
     throw VulkanError(fmt::format("{}: range {} at offset {} does not fit in the {}-byte buffer", where, range, offset,
                                   buffer.size()));
   const vk::DeviceSize effective = range == VK_WHOLE_SIZE ? buffer.size() - offset : range;
-  if (effective > info.maxStorageBufferRange)
-    throw VulkanError(fmt::format("{}: a range of {} bytes exceeds the maxStorageBufferRange ({} bytes) of Vulkan "
+  const uint64_t maxRange = it->uniform ? info.maxUniformBufferRange : info.maxStorageBufferRange;
+  if (effective > maxRange)
+    throw VulkanError(fmt::format("{}: a range of {} bytes exceeds the max{}BufferRange ({} bytes) of Vulkan "
                                   "device '{}'; split the buffer across array elements or dispatches",
-                                  where, effective, info.maxStorageBufferRange, info.name));
+                                  where, effective, kind, maxRange, info.name));
 
   // The explicit range (never VK_WHOLE_SIZE) keeps the shader's view to the
   // requested bytes, not the buffer's rounded-up allocation.
@@ -176,7 +192,7 @@ void ComputePipeline::bindBuffer(uint32_t binding, uint32_t arrayElement, const 
                                                                  .dstBinding = binding,
                                                                  .dstArrayElement = arrayElement,
                                                                  .descriptorCount = 1,
-                                                                 .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                                 .descriptorType = descriptorTypeOf(*it),
                                                                  .pBufferInfo = &bufferInfo},
                                           nullptr);
   bound_[size_t(it - bindings_.begin())][arrayElement] = true;

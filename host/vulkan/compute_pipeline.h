@@ -1,5 +1,5 @@
 #pragma once
-// A compute shader with its descriptor set (storage buffers only), push
+// A compute shader with its descriptor set (storage and uniform buffers), push
 // constants and specialisation constants. Borrows its Context, which must
 // outlive it.
 #include <cstdint>
@@ -21,6 +21,9 @@ struct BindingSpec {
   // maxStorageBufferRange. Shaders must index such arrays with dynamically
   // uniform values: lavapipe has no non-uniform descriptor indexing.
   uint32_t count = 1;
+  // A uniform buffer instead of a storage buffer: small read-only tables
+  // (lavapipe reads them as constants instead of checked per-lane loads).
+  bool uniform = false;
 };
 
 // A specialisation constant: `value` for the shader's constant_id `id`.
@@ -53,8 +56,9 @@ class ComputePipeline {
 
   // Points element `arrayElement` of `binding` at [offset, offset + range) of
   // `buffer` (VK_WHOLE_SIZE: to the end). Refuses ranges larger than the
-  // device's maxStorageBufferRange (callers split big buffers), offsets not
-  // aligned to minStorageBufferOffsetAlignment, and unknown bindings.
+  // device's maxStorageBufferRange (callers split big buffers) or, for a
+  // uniform buffer, maxUniformBufferRange; offsets not aligned to
+  // min{Storage,Uniform}BufferOffsetAlignment; and unknown bindings.
   // The update is immediate: do not rebind while a command buffer that
   // dispatches this pipeline is being recorded or executed.
   void bindBuffer(uint32_t binding, uint32_t arrayElement, const Buffer& buffer, vk::DeviceSize offset = 0,

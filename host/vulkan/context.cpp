@@ -159,6 +159,9 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
   d.maxPushConstantsSize = lim.maxPushConstantsSize;
   d.maxPerStageDescriptorStorageBuffers = lim.maxPerStageDescriptorStorageBuffers;
   d.minStorageBufferOffsetAlignment = lim.minStorageBufferOffsetAlignment;
+  d.maxUniformBufferRange = lim.maxUniformBufferRange;
+  d.maxPerStageDescriptorUniformBuffers = lim.maxPerStageDescriptorUniformBuffers;
+  d.minUniformBufferOffsetAlignment = lim.minUniformBufferOffsetAlignment;
   d.timestampPeriodNs = lim.timestampPeriod;
 
   // The 1.1/1.2 property and feature structs may only be chained on devices
@@ -283,9 +286,10 @@ std::string describeDevices(const std::vector<DeviceInfo>& devices) {
                        bytesString(d.maxMemoryAllocationSize), bytesString(d.deviceLocalHeapBytes));
     out += fmt::format(
         "    maxComputeWorkGroupCount {} x {} x {}, maxComputeWorkGroupInvocations {}, maxPushConstantsSize {} B, "
-        "maxPerStageDescriptorStorageBuffers {}\n",
+        "maxPerStageDescriptorStorageBuffers {}, maxUniformBufferRange {} B\n",
         d.maxComputeWorkGroupCount[0], d.maxComputeWorkGroupCount[1], d.maxComputeWorkGroupCount[2],
-        d.maxComputeWorkGroupInvocations, d.maxPushConstantsSize, d.maxPerStageDescriptorStorageBuffers);
+        d.maxComputeWorkGroupInvocations, d.maxPushConstantsSize, d.maxPerStageDescriptorStorageBuffers,
+        d.maxUniformBufferRange);
     out += fmt::format("    shaderInt64 {}, shaderFloat64 {}, shaderBufferInt64Atomics {}, scalarBlockLayout {}, ",
                        yes(d.shaderInt64), yes(d.shaderFloat64), yes(d.int64Atomics), yes(d.scalarBlockLayout));
     out += d.timestampsSupported

@@ -35,14 +35,15 @@ struct DeviceInfo {
   uint64_t maxStorageBufferRange = 0, maxMemoryAllocationSize = 0, deviceLocalHeapBytes = 0;
   std::array<uint32_t, 3> maxComputeWorkGroupCount{};
   uint32_t maxComputeWorkGroupInvocations = 0, maxPushConstantsSize = 0,
-           maxPerStageDescriptorStorageBuffers = 0;
+           maxPerStageDescriptorStorageBuffers = 0, maxPerStageDescriptorUniformBuffers = 0;
+  uint64_t maxUniformBufferRange = 0;
   float timestampPeriodNs = 0.0f;
   bool timestampsSupported = false;  // on the chosen compute queue family
   bool shaderInt64 = false, shaderFloat64 = false, int64Atomics = false, scalarBlockLayout = false;
   // Beyond the essentials: what Context and friends need to use the device.
   bool hostQueryReset = false;
   bool storageBufferArrayDynamicIndexing = false;  // uniform-but-not-constant indices into binding arrays
-  uint64_t minStorageBufferOffsetAlignment = 1;
+  uint64_t minStorageBufferOffsetAlignment = 1, minUniformBufferOffsetAlignment = 1;
   uint32_t timestampValidBits = 0;
   std::optional<uint32_t> computeQueueFamily;  // first family with compute (and timestamps if any has them)
 

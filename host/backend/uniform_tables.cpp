@@ -1,0 +1,32 @@
+#include "backend/uniform_tables.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace spectrace {
+namespace {
+
+// A table's array length: its size (at least 1) rounded up to a power of two.
+uint32_t arrayLength(size_t elements) {
+  return uint32_t(std::bit_ceil(std::max<size_t>(elements, 1)));
+}
+
+}  // namespace
+
+UniformTableLayout uniformTableLayout(const DeviceScene& tables, uint64_t maxUniformBufferRange, bool wanted) {
+  UniformTableLayout layout;
+  if (!wanted) return layout;
+  UniformTableLayout candidate{.inUniform = true,
+                               .lights = arrayLength(tables.lights.size()),
+                               .intervals = arrayLength(tables.intervals.size()),
+                               .cmfNodes = arrayLength(tables.cmfTable.size()),
+                               .aliasColumns = arrayLength(tables.aliasColumns.size())};
+  const uint64_t bytes[] = {uint64_t(candidate.lights) * sizeof(device::LightRecord),
+                            uint64_t(candidate.intervals) * sizeof(device::SpectralInterval),
+                            uint64_t(candidate.cmfNodes) * sizeof(glm::vec3),
+                            uint64_t(candidate.aliasColumns) * sizeof(device::AliasColumn)};
+  const bool fits = std::all_of(std::begin(bytes), std::end(bytes), [&](uint64_t b) { return b <= maxUniformBufferRange; });
+  return fits ? candidate : layout;
+}
+
+}  // namespace spectrace

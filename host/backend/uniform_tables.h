@@ -1,0 +1,39 @@
+#pragma once
+// Where the trace pipeline reads its small tables from: the lights, the
+// spectral intervals, the CMF nodes and the alias columns, read by every
+// beam. lavapipe loads a uniform buffer's values once for a group of lanes
+// and a storage buffer's lane by lane, checked; on the throughput scene the
+// uniform tables made the whole process 22% faster (2026-11-23).
+//
+// Valid when every table fits the device's maxUniformBufferRange, with its
+// element count rounded up to a power of two (so scenes of similar size
+// share one compiled pipeline in a batch); this function is the one place
+// that checks it. Otherwise, and in the general pipeline, the tables are
+// read from their storage buffers; tests/render_test.cpp checks both paths
+// bit for bit against each other.
+#include <cstdint>
+#include <vector>
+
+#include "compile/compile_scene.h"
+
+namespace spectrace {
+
+struct UniformTableLayout {
+  bool inUniform = false;
+  // Array lengths of the uniform copies (1 when unused), in elements.
+  uint32_t lights = 1, intervals = 1, cmfNodes = 1, aliasColumns = 1;
+};
+
+// `wanted`: the pipeline asks for uniform tables (kSpecialiseUniformTables).
+UniformTableLayout uniformTableLayout(const DeviceScene& tables, uint64_t maxUniformBufferRange, bool wanted);
+
+// `table` padded with zero elements to `length` (uniform copies are read as
+// arrays of that length, so the buffer must hold all of them).
+template <typename T>
+std::vector<T> paddedTable(const std::vector<T>& table, uint32_t length) {
+  std::vector<T> padded = table;
+  if (padded.size() < length) padded.resize(length, T{});
+  return padded;
+}
+
+}  // namespace spectrace

@@ -1,0 +1,81 @@
+// Where the trace reads its tables: the one check (uniformTableLayout) and
+// the uniform path against the storage path on the device.
+#include "backend/uniform_tables.h"
+
+#include <gtest/gtest.h>
+
+#include "backend/vulkan_tracer.h"
+#include "compile/compile_scene.h"
+#include "scene/scene_builders.h"
+#include "support/test_scenes.h"
+
+namespace spectrace {
+namespace {
+
+DeviceScene tablesOf(size_t lights, size_t intervals, size_t cmfNodes, size_t aliasColumns) {
+  DeviceScene tables;
+  tables.lights.resize(lights);
+  tables.intervals.resize(intervals);
+  tables.cmfTable.resize(cmfNodes);
+  tables.aliasColumns.resize(aliasColumns);
+  return tables;
+}
+
+TEST(UniformTables, LengthsArePowersOfTwoHoldingEveryElement) {
+  const UniformTableLayout layout = uniformTableLayout(tablesOf(3, 471, 0, 513), 65536, true);
+  EXPECT_TRUE(layout.inUniform);
+  EXPECT_EQ(layout.lights, 4u);
+  EXPECT_EQ(layout.intervals, 512u);
+  EXPECT_EQ(layout.cmfNodes, 1u);  // an empty table still declares one element
+  EXPECT_EQ(layout.aliasColumns, 1024u);
+}
+
+TEST(UniformTables, ATableOverTheRangeKeepsEveryTableInStorage) {
+  // 2048 alias columns of 16 bytes are 32 KiB: over a 16 KiB range (the
+  // smallest maxUniformBufferRange Vulkan allows), within 64 KiB.
+  EXPECT_TRUE(uniformTableLayout(tablesOf(1, 10, 95, 2048), 65536, true).inUniform);
+  const UniformTableLayout layout = uniformTableLayout(tablesOf(1, 10, 95, 2048), 16384, true);
+  EXPECT_FALSE(layout.inUniform);
+  EXPECT_EQ(layout.lights, 1u);
+  EXPECT_EQ(layout.aliasColumns, 1u);
+  // Exactly at the range fits: 1024 columns x 16 bytes.
+  EXPECT_TRUE(uniformTableLayout(tablesOf(1, 10, 95, 1024), 16384, true).inUniform);
+}
+
+TEST(UniformTables, TheGeneralPipelineAsksForNone) {
+  EXPECT_FALSE(uniformTableLayout(tablesOf(1, 10, 95, 16), 65536, false).inUniform);
+}
+
+TEST(UniformTables, PaddingAppendsZeroElementsOnly) {
+  const std::vector<int> padded = paddedTable(std::vector<int>{7, 8, 9}, 4);
+  EXPECT_EQ(padded, (std::vector<int>{7, 8, 9, 0}));
+  EXPECT_EQ(paddedTable(std::vector<int>{7, 8, 9}, 1).size(), 3u);
+}
+
+// Two lights of different spectra (so per-beam colour reads the CMF table
+// and the light choice reads the alias columns), aimed: every table is read.
+// The uniform path counts every beam where the storage path does.
+TEST(UniformTables, UniformAndStorageTablesGiveTheSameFilm) {
+  Scene scene = bareSensorScene(0.01, 0.01, 8, 8, 16);
+  scene.camera.pinhole = Pinhole{0.005, 0.0005};
+  Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.1}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
+  panel.radiusM = 0.02;
+  Light lamp = surfaceLight(LightType::Rect, {0.01, 0.0, 0.08}, {0, 0, -1}, 2.0, *cieIlluminant("F11"));
+  lamp.sizeM = {0.01, 0.005};
+  lamp.uAxis = {1, 0, 0};
+  scene.lights = {panel, lamp};
+  const CompiledScene plan = compileScene(scene, 7);
+  ASSERT_TRUE(uniformTableLayout(plan.device, testing::sharedVulkan().info().maxUniformBufferRange, true).inUniform);
+  VulkanTracer uniform(testing::sharedVulkan(), plan, 64, kSpecialiseUniformTables);
+  VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
+  uniform.trace(0, 300'000);
+  storage.trace(0, 300'000);
+  const SpectralHistogram a = uniform.download();
+  const SpectralHistogram b = storage.download();
+  EXPECT_GT(a.countedBeams, 1000u);
+  EXPECT_EQ(a.countedBeams, b.countedBeams);
+  EXPECT_EQ(a.counts, b.counts);
+}
+
+}  // namespace
+}  // namespace spectrace
