@@ -20,7 +20,7 @@
 namespace spectrace::device {
 template <typename K>
 concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
-  { k.philox4x32(amount, amount, i) };
+  { K::philox4x32(amount, amount, i) };
   { k.readAliasColumn(i) } -> std::same_as<AliasColumn>;
   { k.readLight(i) } -> std::same_as<LightRecord>;
   { k.readInterval(i) } -> std::same_as<SpectralInterval>;

@@ -12,7 +12,6 @@
 #include "device_shared.h"
 #include "kernel_interface.h"
 #include "rng/philox.h"
-#include "rng/philox_lanes.h"
 
 namespace spectrace::device {
 
@@ -49,40 +48,6 @@ class PendingCounts {
   uint64_t amount_[kCapacity];
 };
 
-// The Philox blocks a beam draws (spectral, geometry and, with several
-// lights, the light choice), computed ahead for kPhiloxLanes consecutive
-// beams at once (rng/philox_lanes.h). The kernel takes a beam's words from
-// here when they are held, and computes them itself otherwise: the same
-// words either way.
-class PhiloxAhead {
- public:
-  void fill(uint64_t seed, uint64_t firstIndex, bool withLightBlock) {
-    seed_ = seed;
-    first_ = firstIndex;
-    philoxLanes(seed, firstIndex, kRngBlockSpectral, blocks_[kRngBlockSpectral]);
-    philoxLanes(seed, firstIndex, kRngBlockGeometry, blocks_[kRngBlockGeometry]);
-    if (withLightBlock) philoxLanes(seed, firstIndex, kRngBlockLight, blocks_[kRngBlockLight]);
-    withLight_ = withLightBlock;
-  }
-  // The words of (seed, index, block), or false when they are not held.
-  bool find(uint64_t seed, uint64_t index, uint32_t block, glm::uvec4& words) const {
-    const uint64_t lane = index - first_;  // wraps to large below first_
-    const bool held = lane < kPhiloxLanes && seed == seed_ &&
-                      (block == kRngBlockSpectral || block == kRngBlockGeometry || (block == kRngBlockLight && withLight_));
-    if (held) {
-      const PhiloxLanes& b = blocks_[block];
-      words = glm::uvec4(b.words[0][lane], b.words[1][lane], b.words[2][lane], b.words[3][lane]);
-    }
-    return held;
-  }
-
- private:
-  static_assert(kRngBlockSpectral < 3 && kRngBlockGeometry < 3 && kRngBlockLight < 3);
-  PhiloxLanes blocks_[3];
-  uint64_t seed_ = 0, first_ = ~0ull;
-  bool withLight_ = false;
-};
-
 // GLSL names (vec3, uvec4, sqrt, min, abs, ...) for the shared code.
 using namespace glm;
 
@@ -111,9 +76,7 @@ class BeamKernel {
   }
 
   // The includer contract (kernel_interface.h).
-  uvec4 philox4x32(uint64_t seed, uint64_t index, uint block) const {
-    uvec4 words;
-    if (ahead && ahead->find(seed, index, block, words)) return words;
+  static uvec4 philox4x32(uint64_t seed, uint64_t index, uint block) {
     const auto w = spectrace::philoxWords(seed, index, block);
     return uvec4(w[0], w[1], w[2], w[3]);
   }
@@ -128,10 +91,6 @@ class BeamKernel {
     else std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount, std::memory_order_relaxed);
   }
   PendingCounts* pending = nullptr;
-  // Philox words computed ahead (the caller fills it for the beams it is
-  // about to trace); null: each beam computes its own.
-  const PhiloxAhead* ahead = nullptr;
-  const TraceConstants& traceConstants() const { return constants; }
 
  private:
   TraceConstants constants;

@@ -1,5 +1,4 @@
 #include "rng/philox.h"
-#include "rng/philox_lanes.h"
 
 #include <gtest/gtest.h>
 
@@ -50,29 +49,6 @@ TEST(Philox, StreamsPast2To32DoNotRepeat) {
   // Beam i and beam i + 2^32 must differ: the index's high word is counted.
   for (uint64_t i : {0ull, 1ull, 12345ull, (1ull << 32) - 1}) {
     EXPECT_NE(philoxWords(1, i, 0), philoxWords(1, i + (1ull << 32), 0)) << i;
-  }
-}
-
-// The lanes (the CPU reference's batched Philox) are philoxWords bit for
-// bit: seeds with both halves set, runs that carry into the index's high
-// word, the last indices below 2^64, every block the kernel draws.
-TEST(PhiloxLanes, EveryLaneIsPhiloxWordsOfItsIndex) {
-  const uint64_t firsts[] = {0ull, 12345ull, (1ull << 32) - 17, 0xfedcba9876543210ull, ~0ull - (kPhiloxLanes - 1)};
-  for (uint64_t seed : {0ull, 1ull, 0x0123456789abcdefull}) {
-    for (uint64_t first : firsts) {
-      for (uint32_t block : {0u, 1u, 2u, 0xffffffffu}) {
-        PhiloxLanes lanes, plain;
-        philoxLanes(seed, first, block, lanes);
-        philoxLanesWithoutSimd(seed, first, block, plain);
-        for (uint32_t lane = 0; lane < kPhiloxLanes; ++lane) {
-          const auto expected = philoxWords(seed, first + lane, block);
-          for (int w = 0; w < 4; ++w) {
-            ASSERT_EQ(lanes.words[w][lane], expected[w]) << "seed " << seed << " index " << first + lane << " block " << block << " word " << w;
-            ASSERT_EQ(plain.words[w][lane], expected[w]) << "without SIMD: seed " << seed << " index " << first + lane;
-          }
-        }
-      }
-    }
   }
 }
 
