@@ -21,10 +21,8 @@ UniformTableLayout uniformTableLayout(const DeviceScene& tables, uint64_t maxUni
                                .intervals = arrayLength(tables.intervals.size()),
                                .cmfNodes = arrayLength(tables.cmfTable.size()),
                                .aliasColumns = arrayLength(tables.aliasColumns.size())};
-  const uint64_t bytes[] = {uint64_t(candidate.lights) * sizeof(device::LightRecord),
-                            uint64_t(candidate.intervals) * sizeof(device::SpectralInterval),
-                            uint64_t(candidate.cmfNodes) * sizeof(glm::vec3),
-                            uint64_t(candidate.aliasColumns) * sizeof(device::AliasColumn)};
+  const uint64_t bytes[] = {candidate.lightBytes(), candidate.intervalBytes(), candidate.cmfBytes(),
+                            candidate.aliasColumnBytes()};
   const bool fits = std::all_of(std::begin(bytes), std::end(bytes), [&](uint64_t b) { return b <= maxUniformBufferRange; });
   return fits ? candidate : layout;
 }

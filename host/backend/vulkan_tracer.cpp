@@ -255,12 +255,10 @@ void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Bu
   pipeline.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
   // The uniform copies: the padded tables (the same buffers), or their first
   // element when the storage buffers are read.
-  pipeline.bindBuffer(device::kBindingLightsUniform, 0, lights_, 0, uniformTables_.lights * sizeof(device::LightRecord));
-  pipeline.bindBuffer(device::kBindingSpectralIntervalsUniform, 0, intervals_, 0,
-                      uniformTables_.intervals * sizeof(device::SpectralInterval));
-  pipeline.bindBuffer(device::kBindingCmfTableUniform, 0, cmfTable_, 0, uniformTables_.cmfNodes * sizeof(glm::vec3));
-  pipeline.bindBuffer(device::kBindingAliasColumnsUniform, 0, aliasColumns_, 0,
-                      uniformTables_.aliasColumns * sizeof(device::AliasColumn));
+  pipeline.bindBuffer(device::kBindingLightsUniform, 0, lights_, 0, uniformTables_.lightBytes());
+  pipeline.bindBuffer(device::kBindingSpectralIntervalsUniform, 0, intervals_, 0, uniformTables_.intervalBytes());
+  pipeline.bindBuffer(device::kBindingCmfTableUniform, 0, cmfTable_, 0, uniformTables_.cmfBytes());
+  pipeline.bindBuffer(device::kBindingAliasColumnsUniform, 0, aliasColumns_, 0, uniformTables_.aliasColumnBytes());
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.
