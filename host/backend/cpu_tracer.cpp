@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <thread>
 #include <new>
+#include <span>
 #include <cstdint>
 
 #include <sys/mman.h>
@@ -35,18 +36,132 @@ void HugePageAllocator<T>::deallocate(T* p, size_t n) {
 
 template struct HugePageAllocator<uint64_t>;
 
-CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage)
+namespace {
+
+// A thread's queued film adds: one group fills while the other's prefetched
+// lines arrive (device::PendingCounts).
+struct CountQueues {
+  explicit CountQueues(std::span<uint64_t> counters) : groups{device::PendingCounts(counters), device::PendingCounts(counters)} {}
+  device::PendingCounts groups[2];
+  size_t filling = 0;
+};
+
+// Beams firstBeam + [from, to) through `kernel` (whose pending adds go to `queues`),
+// the whole kernel or the profile's stage; returns the beams counted. Its
+// two copies below differ only in their target: each is flattened (every
+// call inlined), so the whole kernel is compiled into each, and no shared
+// inline function is emitted out of line with another target's
+// instructions (which the linker might then pick for the baseline).
+// (Offsets from firstBeam, so that a range ending at 2^64 does not wrap.)
+inline uint64_t traceBlockBody(device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam, uint64_t from,
+                               uint64_t to, uint32_t profileStage) {
+  kernel.pending = &queues.groups[queues.filling];
+  const bool wholeKernel = profileStage == device::kProfileStageFull;
+  uint64_t counted = 0;
+  for (uint64_t i = from; i < to; ++i) {
+    const bool hit =
+        wholeKernel ? kernel.traceAndCountBeam(firstBeam + i) : kernel.profileBeam(firstBeam + i, profileStage);
+    counted += hit ? 1 : 0;
+    if (queues.groups[queues.filling].full()) {
+      queues.filling ^= 1;
+      queues.groups[queues.filling].flush();
+      kernel.pending = &queues.groups[queues.filling];
+    }
+  }
+  return counted;
+}
+
+// Beams [first, first + count) recorded, not counted (traceRecorded).
+inline void recordBeamsBody(device::BeamKernel& kernel, uint64_t first, uint32_t count, device::BeamRecord* records) {
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t pixel, bin;
+    uint64_t units = 0;
+    records[i] = kernel.trace(first + i, pixel, bin, &units)
+                     ? device::BeamRecord{pixel, bin, uint32_t(units), 0u}
+                     : device::BeamRecord{device::kBeamMissed, device::kBeamMissed, 0u, 0u};
+  }
+}
+
+__attribute__((flatten)) uint64_t traceBlockBaseline(device::BeamKernel& kernel, CountQueues& queues,
+                                                     uint64_t firstBeam, uint64_t from, uint64_t to,
+                                                     uint32_t profileStage) {
+  return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
+}
+__attribute__((flatten)) void recordBeamsBaseline(device::BeamKernel& kernel, uint64_t first, uint32_t count,
+                                                  device::BeamRecord* records) {
+  recordBeamsBody(kernel, first, count, records);
+}
+
+#if defined(__x86_64__)
+#define SPECTRACE_HAS_X86_64_V3 1
+__attribute__((flatten, target("arch=x86-64-v3"))) uint64_t traceBlockV3(device::BeamKernel& kernel, CountQueues& queues,
+                                                                         uint64_t firstBeam, uint64_t from, uint64_t to,
+                                                                         uint32_t profileStage) {
+  return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
+}
+__attribute__((flatten, target("arch=x86-64-v3"))) void recordBeamsV3(device::BeamKernel& kernel, uint64_t first,
+                                                                      uint32_t count, device::BeamRecord* records) {
+  recordBeamsBody(kernel, first, count, records);
+}
+#else
+#define SPECTRACE_HAS_X86_64_V3 0
+#endif
+
+uint64_t traceBlock(CpuCode code, device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam, uint64_t from,
+                    uint64_t to, uint32_t profileStage) {
+#if SPECTRACE_HAS_X86_64_V3
+  if (code == CpuCode::X86_64_V3) return traceBlockV3(kernel, queues, firstBeam, from, to, profileStage);
+#endif
+  return traceBlockBaseline(kernel, queues, firstBeam, from, to, profileStage);
+}
+
+void recordBeams(CpuCode code, device::BeamKernel& kernel, uint64_t first, uint32_t count, device::BeamRecord* records) {
+#if SPECTRACE_HAS_X86_64_V3
+  if (code == CpuCode::X86_64_V3) return recordBeamsV3(kernel, first, count, records);
+#endif
+  recordBeamsBaseline(kernel, first, count, records);
+}
+
+}  // namespace
+
+bool cpuRuns(CpuCode code) {
+  if (code == CpuCode::Baseline) return true;
+#if SPECTRACE_HAS_X86_64_V3
+  // libgcc's check includes the operating system's support for AVX state.
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("x86-64-v3");
+#else
+  return false;
+#endif
+}
+
+CpuCode fastestCpuCode() { return cpuRuns(CpuCode::X86_64_V3) ? CpuCode::X86_64_V3 : CpuCode::Baseline; }
+
+const char* cpuCodeName(CpuCode code) { return code == CpuCode::X86_64_V3 ? "x86-64-v3" : "baseline"; }
+
+std::optional<CpuCode> cpuCodeNamed(std::string_view name) {
+  for (CpuCode code : {CpuCode::Baseline, CpuCode::X86_64_V3})
+    if (name == cpuCodeName(code)) return code;
+  return std::nullopt;
+}
+
+CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage, CpuCode code)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
       profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageFull)),
+      code_(code),
       counters_(plan.film.storedCounterCount()) {  // zero, untouched (HugePageAllocator)
+  if (!cpuRuns(code))
+    throw std::invalid_argument(fmt::format("CpuTracer: this processor cannot run the {} code", cpuCodeName(code)));
   // One chunk holds every stored pixel.
   plan_.device.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
   // The profile's counting stage counts bins only (shaders/profile.h).
   if (profileStage_ <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
 }
 
-std::string CpuTracer::deviceName() const { return fmt::format("CPU reference, {} threads", threads_); }
+std::string CpuTracer::deviceName() const {
+  return fmt::format("CPU reference, {} threads, {}", threads_, cpuCodeName(code_));
+}
 
 uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
   const device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable, counters_);
@@ -59,17 +174,7 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   std::atomic<uint64_t> stoppedAtBlock{blockCount};
   auto worker = [&] {
     device::BeamKernel local = kernel;
-    // Two groups of queued adds: one fills while the other's prefetched
-    // lines arrive (device::PendingCounts).
-    device::PendingCounts groups[2] = {device::PendingCounts(counters_), device::PendingCounts(counters_)};
-    size_t filling = 0;
-    local.pending = &groups[filling];
-    auto nextGroupIfFull = [&] {
-      if (!groups[filling].full()) return;
-      filling ^= 1;
-      groups[filling].flush();
-      local.pending = &groups[filling];
-    };
+    CountQueues queues(counters_);
     uint64_t countedHere = 0;
     for (;;) {
       const uint64_t block = nextBlock.fetch_add(1, std::memory_order_relaxed);
@@ -80,15 +185,10 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
         break;
       }
       const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
-      const bool wholeKernel = profileStage_ == device::kProfileStageFull;
-      for (uint64_t i = block * kBlock; i < end; ++i) {
-        const bool hit = wholeKernel ? local.traceAndCountBeam(firstBeam + i) : local.profileBeam(firstBeam + i, profileStage_);
-        countedHere += hit ? 1 : 0;
-        nextGroupIfFull();
-      }
+      countedHere += traceBlock(code_, local, queues, firstBeam, block * kBlock, end, profileStage_);
     }
-    groups[0].flush();
-    groups[1].flush();
+    queues.groups[0].flush();
+    queues.groups[1].flush();
     counted.fetch_add(countedHere, std::memory_order_relaxed);
   };
   std::vector<std::jthread> pool;
@@ -127,13 +227,7 @@ RenderImage CpuTracer::develop(const ResolveParameters& parameters, FilmSummary*
 std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
   device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable);
   std::vector<device::BeamRecord> records(count);
-  for (uint32_t i = 0; i < count; ++i) {
-    uint32_t pixel, bin;
-    uint64_t units = 0;
-    records[i] = kernel.trace(firstBeam + i, pixel, bin, &units)
-                     ? device::BeamRecord{pixel, bin, uint32_t(units), 0u}
-                     : device::BeamRecord{device::kBeamMissed, device::kBeamMissed, 0u, 0u};
-  }
+  recordBeams(code_, kernel, firstBeam, count, records.data());
   return records;
 }
 

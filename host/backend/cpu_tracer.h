@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "backend/cpu_code.h"
 #include "backend/tracer.h"
 #include "compile/compile_scene.h"
 
@@ -50,8 +51,9 @@ class CpuTracer final : public Tracer {
  public:
   // threads = 0: all hardware threads.
   // profileStage: the bench's cost profile (shaders/profile.h); the default traces the whole kernel.
+  // code: the loop's machine code; one this processor cannot run throws std::invalid_argument.
   explicit CpuTracer(const CompiledScene& plan, unsigned threads = 0,
-                     uint32_t profileStage = device::kProfileStageFull);
+                     uint32_t profileStage = device::kProfileStageFull, CpuCode code = fastestCpuCode());
 
   DeviceKind kind() const override { return DeviceKind::Cpu; }
   std::string deviceName() const override;
@@ -66,6 +68,7 @@ class CpuTracer final : public Tracer {
   CompiledScene plan_;
   unsigned threads_;
   uint32_t profileStage_;
+  CpuCode code_;
   std::vector<uint64_t, HugePageAllocator<uint64_t>> counters_;  // the stored pixels' counters, one chunk
   uint64_t countedBeams_ = 0;
 };

@@ -47,7 +47,10 @@ std::vector<DeviceSpec> listDevices(const std::string& filter) {
   } catch (const vk_util::VulkanError&) {
     // No Vulkan: the CPU reference alone.
   }
-  DeviceSpec cpu{DeviceKind::Cpu, fmt::format("CPU reference, {} threads", std::max(1u, std::thread::hardware_concurrency())), -1};
+  DeviceSpec cpu{DeviceKind::Cpu,
+                 fmt::format("CPU reference, {} threads, {}", std::max(1u, std::thread::hardware_concurrency()),
+                             cpuCodeName(fastestCpuCode())),
+                 -1};
   if (accepted(cpu)) devices.push_back(cpu);
   return devices;
 }
@@ -106,7 +109,8 @@ std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const Trac
   if (vulkan_)
     return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures, buffers_,
                                           options.profileStage);
-  return std::make_unique<CpuTracer>(plan, options.cpuThreads, options.profileStage);
+  return std::make_unique<CpuTracer>(plan, options.cpuThreads, options.profileStage,
+                                     options.cpuCode.value_or(fastestCpuCode()));
 }
 
 }  // namespace spectrace

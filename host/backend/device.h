@@ -3,9 +3,11 @@
 // CPU reference. A Device is opened once and makes tracers for scenes.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "backend/cpu_code.h"
 #include "backend/specialisation.h"
 #include "backend/tracer.h"
 #include "compile/compile_scene.h"
@@ -24,6 +26,7 @@ struct TracerOptions {
   uint32_t workgroupSize = 64;                     // Vulkan
   uint32_t specialisedFeatures = kSpecialiseAll;   // Vulkan: SpecialisedFeature bits
   unsigned cpuThreads = 0;                         // CPU: 0 = all hardware threads
+  std::optional<CpuCode> cpuCode;                  // CPU: none = the fastest this processor runs
   uint32_t profileStage = device::kProfileStageFull;  // bench only: the kernel cut after a stage (shaders/profile.h)
 };
 

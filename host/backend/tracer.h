@@ -24,7 +24,7 @@ class Tracer {
   virtual ~Tracer() = default;
 
   virtual DeviceKind kind() const = 0;
-  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads".
+  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads, x86-64-v3".
   virtual std::string deviceName() const = 0;
   // "name (kind)", as written into EXR headers.
   std::string deviceLabel() const { return deviceName() + " (" + deviceKindName(kind()) + ")"; }

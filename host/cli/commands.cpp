@@ -31,6 +31,16 @@ bool namesFolder(const std::filesystem::path& output) {
 }
 
 // --state, --resume and --shard on a job (throws UsageError).
+// --cpu-code: none for "auto"; a code this processor cannot run is a usage
+// error, not a crash on an illegal instruction.
+std::optional<CpuCode> cpuCodeOption(const std::string& text) {
+  if (text == "auto") return std::nullopt;
+  const std::optional<CpuCode> code = cpuCodeNamed(text);
+  if (!code) throw UsageError(fmt::format("--cpu-code {}: must be auto, baseline or x86-64-v3", text));
+  if (!cpuRuns(*code)) throw UsageError(fmt::format("--cpu-code {}: this processor cannot run that code", text));
+  return code;
+}
+
 void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   if (command.shard) {
     uint64_t index = 0, count = 0;
@@ -107,6 +117,7 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
     RenderOptions& options = job.options;
     options.firstBeam = command.firstBeam;
     options.cpuThreads = command.threads;
+    options.cpuCode = cpuCodeOption(command.cpuCode);
     options.cancel = &cancel;
     options.checkpointSeconds = command.checkpointSeconds;
     options.plan.trimSpectrum = !command.fullSpectrum;

@@ -23,6 +23,7 @@ struct RenderCommand {
   uint64_t firstBeam = 0;
   std::string device = "auto";
   unsigned threads = 0;
+  std::string cpuCode = "auto";                 // --cpu-code: auto, baseline or x86-64-v3
   bool png = true;
   bool quiet = false;
   double checkpointSeconds = 60.0;

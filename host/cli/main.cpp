@@ -49,6 +49,10 @@ int main(int argc, char** argv) {
   renderCmd->add_option_function<std::string>(
       "--threads", [&](const std::string& v) { render.threads = parseThreads("--threads", v); },
       "CPU reference threads, 1 to 1024 (default: all)");
+  renderCmd->add_option("--cpu-code", render.cpuCode,
+                        "CPU reference's machine code: auto (the fastest this processor runs), baseline or x86-64-v3; "
+                        "all draw the same beams bit for bit")
+      ->check(CLI::IsMember({"auto", "baseline", "x86-64-v3"}));
   renderCmd->add_flag("!--no-png", render.png, "Do not write the PNG preview");
   renderCmd->add_flag("-q,--quiet", render.quiet, "Print only errors");
   renderCmd->add_option("--pipeline-cache", render.pipelineCache.path, "Vulkan pipeline cache file (default: under $XDG_CACHE_HOME/spectrace)");

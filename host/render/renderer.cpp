@@ -134,7 +134,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   std::unique_ptr<Tracer> tracer;
   try {
     tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads,
-                                                     options.profileStage});
+                                                     options.cpuCode, options.profileStage});
   } catch (const SceneError& e) {  // the device's limits, named by field; add the file
     throw SceneError(scenePrefix(scene) + e.what());
   }

@@ -22,6 +22,7 @@ struct RenderOptions {
   DeviceChoice device = DeviceChoice::Auto;
   PipelineCacheOptions pipelineCache;  // for the device render(scene, options) opens
   unsigned cpuThreads = 0;           // 0: all hardware threads
+  std::optional<CpuCode> cpuCode;    // none: the fastest this processor runs
   uint32_t workgroupSize = 64;
   CompileOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights
   // GPU: the scene features the trace pipeline is compiled for
@@ -62,7 +63,7 @@ struct RenderResult {
   RenderImage image;
   uint64_t beamsTraced = 0;     // < options.beams only when cancelled
   DeviceKind deviceKind = DeviceKind::Cpu;
-  std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads"
+  std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads, x86-64-v3"
   double wallSeconds = 0.0;
   double traceWallSeconds = 0.0;      // the batch loop alone (no device setup, no resolve)
   double traceDeviceSeconds = 0.0;    // GPU timestamps (0 on the CPU)

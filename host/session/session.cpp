@@ -348,7 +348,9 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   if (std::string field = fingerprintDifference(f, jobFingerprint(job)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);
-  const auto tracer = device_->makeTracer(plan, TracerOptions{64, f.specialisation, 0});
+  TracerOptions tracerOptions;
+  tracerOptions.specialisedFeatures = f.specialisation;
+  const auto tracer = device_->makeTracer(plan, tracerOptions);
   tracer->upload(state.histogram);
   RenderResult result;
   result.plan = plan;
