@@ -11,11 +11,10 @@
 #
 # Also checks that the physics did not change: one render of each binary
 # must agree in total and in every 32x32-pixel block within 5 sigma
-# (tools/exr_blocks_agree), in irradiance and in Y. (Against 2cc8a60 the
-# irradiance is identical: where a beam lands depends only on the Philox
-# words of its geometry, which did not change; the wavelengths are drawn
-# from the same words through another table, so Y is an independent
-# estimate.) Exit status: 0 when they agree, 1 when not, 2 on
+# (tools/exr_blocks_agree), in irradiance and in Y. (Against 2cc8a60 both
+# are independent estimates: the emission now takes its four words from
+# the geometry block alone, and the wavelengths come from another table.)
+# Exit status: 0 when they agree, 1 when not, 2 on
 # a usage or build error. Builds as scripts/check_identical_images.sh does.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -134,8 +134,8 @@ SPECTRACE_CONSTANT uint kWeightUnitsFractional = 16777216u;  // 2^24
 
 // Philox counter blocks: each gives four 32-bit words per beam. Light choice
 // has its own block, so single-light scenes draw two blocks, not three.
-SPECTRACE_CONSTANT uint kRngBlockSpectral = 0;   // interval (64 bit), position in interval, origin u
-SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;   // origin v, direction u, direction v, (spare)
+SPECTRACE_CONSTANT uint kRngBlockSpectral = 0;   // interval (64 bit), position in interval, spare (rounding)
+SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;   // origin u, origin v, direction u, direction v
 SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (spare)
 
 // One light, in the camera frame (metres, single precision). Built on the

@@ -1,7 +1,10 @@
 // The bench's cost profile (spectrace bench, "Profile"): the kernel cut
 // after one of its stages (device_shared.h, ProfileStage), built by calling
-// trace.h's own functions in traceBeam's order, so it follows the kernel
-// as that changes. Never used to render. Included after trace.h.
+// trace.h's own functions with the same random words, so it follows the
+// kernel as that changes. The stages run in the order, with the
+// wavelength drawn for every beam, where traceBeam draws it for counted
+// beams only: each stage's row is that stage's whole cost. Never used to
+// render. Included after trace.h.
 #ifndef SPECTRACE_PROFILE_H
 #define SPECTRACE_PROFILE_H
 
@@ -42,8 +45,8 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   vec3 origin;
   vec3 direction;
   light.aimed = 0u;  // aiming belongs to the last stage
-  float ratio = emitLightBeam(light, uniformFromWord(spectral.w), uniformFromWord(geometry.x),
-                              uniformFromWord(geometry.y), uniformFromWord(geometry.z), origin, direction);
+  float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
+                              uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
   hash = profileMix(hash, floatBitsToUint(origin.x) ^ floatBitsToUint(origin.y) ^ floatBitsToUint(origin.z));
   hash = profileMix(hash, floatBitsToUint(direction.x) ^ floatBitsToUint(direction.y) ^ floatBitsToUint(direction.z));
   hash = profileMix(hash, floatBitsToUint(ratio));
@@ -56,7 +59,7 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   if (stage == kProfileStageSensor) return profileKeep(profileMix(hash, hit ? cell.x ^ (cell.y << 16u) : 0u));
 
   // Counting with unit weight; exact colour as the tracer set it.
-  return hit && countBeam(cell, bin, lambda, 1.0f, uniformFromWord(geometry.w));
+  return hit && countBeam(cell, bin, lambda, 1.0f, uniformFromWord(spectral.w));
 }
 
 #endif  // SPECTRACE_PROFILE_H

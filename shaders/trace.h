@@ -15,27 +15,38 @@
 // its wavelength and a spare uniform (for rounding). Every random number
 // comes from (seed, beamIndex, block), so the result is independent of
 // batching, threads and device.
+//
+// The wavelength is drawn last, and only for a beam that reaches the
+// camera: nothing between the light and the sensor depends on it yet
+// (transport.h), and most beams miss. Valid while transport is independent
+// of wavelength; a dispersive medium must draw it before transportBeam.
+// Lazy drawing changes no beam: the spectral block's words are the same
+// whenever they are drawn.
 FN bool traceBeam(uint64_t beamIndex, OUT(uvec2) cell, OUT(uint) bin, OUT(float) lambda, OUT(float) spareUniform,
                   OUT(float) ratio) {
-  uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
   LightRecord light = readLight(chooseLight(constants.seed, beamIndex));
-  lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
-  spareUniform = uniformFromWord(geometry.w);
-  // The bin of the full spectrum, then its place among the stored bins (the
-  // host stores every bin a light can reach, so the clamp never acts).
-  uint fullBin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.totalBins);
-  bin = min(max(fullBin, constants.binOffset) - constants.binOffset, constants.bins - 1u);
-
   vec3 origin;
   vec3 direction;
-  ratio = emitLightBeam(light, uniformFromWord(spectral.w), uniformFromWord(geometry.x),
-                        uniformFromWord(geometry.y), uniformFromWord(geometry.z), origin, direction);
+  ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
+                        uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
   bool travelling = transportBeam(beamIndex, origin, direction, ratio);
   bool hit = travelling && hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre,
                                      constants.pixelsX, constants.pixelsY, constants.apertureDistance,
-                                     constants.apertureRadiusSq, cell);
-  return hit && ratio > 0.0f;
+                                     constants.apertureRadiusSq, cell) && ratio > 0.0f;
+  lambda = 0.0f;
+  spareUniform = 0.0f;
+  bin = 0u;
+  if (hit) {
+    uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
+    lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
+    spareUniform = uniformFromWord(spectral.w);
+    // The bin of the full spectrum, then its place among the stored bins
+    // (the host stores every bin a light can reach, so the clamp never acts).
+    uint fullBin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.totalBins);
+    bin = min(max(fullBin, constants.binOffset) - constants.binOffset, constants.bins - 1u);
+  }
+  return hit;
 }
 
 // Traces beam `beamIndex` and, when it reaches the camera, counts it into
