@@ -127,9 +127,18 @@ void recordBeams(CpuCode code, device::BeamKernel& kernel, uint64_t first, uint3
 bool cpuRuns(CpuCode code) {
   if (code == CpuCode::Baseline) return true;
 #if SPECTRACE_HAS_X86_64_V3
-  // libgcc's check includes the operating system's support for AVX state.
+  // The checks include the operating system's support for AVX state.
   __builtin_cpu_init();
+#if defined(__clang__)
+  // Clang 14 names no architecture levels here: the features x86-64-v3
+  // adds that it does name (LZCNT, MOVBE and F16C come with them on every
+  // processor that has AVX2, BMI2 and FMA).
+  return __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+         __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("popcnt") &&
+         __builtin_cpu_supports("sse4.2");
+#else
   return __builtin_cpu_supports("x86-64-v3");
+#endif
 #else
   return false;
 #endif
