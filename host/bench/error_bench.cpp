@@ -130,17 +130,24 @@ std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t b
         return sum;
       };
       const auto binned = meanXyz(false), perBeam = meanXyz(true);
-      double sumX = 0, sumY = 0, sumXX = 0, sumYY = 0;
+      // The pixels' chromaticity variance in two passes (mean, then squared
+      // deviations): the one-pass sumXX - sumX^2 / n cancels to a small
+      // negative number, and a NaN sigma, for a line spectrum's equal pixels.
       const size_t pixels = image.irradiance.size();
+      std::vector<std::array<double, 2>> xys(pixels);
+      double sumX = 0, sumY = 0;
       for (size_t p = 0; p < pixels; ++p) {
-        const auto xy = chromaticity({image.xyz[p * 3], image.xyz[p * 3 + 1], image.xyz[p * 3 + 2]});
-        sumX += xy[0];
-        sumY += xy[1];
-        sumXX += xy[0] * xy[0];
-        sumYY += xy[1] * xy[1];
+        xys[p] = chromaticity({image.xyz[p * 3], image.xyz[p * 3 + 1], image.xyz[p * 3 + 2]});
+        sumX += xys[p][0];
+        sumY += xys[p][1];
       }
       const double n = double(pixels);
-      const double varX = (sumXX - sumX * sumX / n) / (n - 1), varY = (sumYY - sumY * sumY / n) / (n - 1);
+      double squaresX = 0, squaresY = 0;
+      for (const auto& xy : xys) {
+        squaresX += (xy[0] - sumX / n) * (xy[0] - sumX / n);
+        squaresY += (xy[1] - sumY / n) * (xy[1] - sumY / n);
+      }
+      const double varX = squaresX / (n - 1), varY = squaresY / (n - 1);
       auto chromaError = [&](const std::array<double, 3>& xyz) {
         const auto xy = chromaticity(xyz);
         return std::hypot(xy[0] - exactXy[0], xy[1] - exactXy[1]);
