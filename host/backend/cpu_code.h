@@ -8,7 +8,8 @@ namespace spectrace {
 // whole shared kernel inside it are compiled twice from the same text: for
 // the baseline of the build's architecture, and on x86-64 also for
 // x86-64-v3 (AVX2, BMI2, three-operand VEX forms), taken when the processor
-// has it: 6-20% less time on the throughput scene (docs/benchmarks.md).
+// has it: baseline : x86-64-v3 = 1.13 in whole-process time on the
+// throughput scene (scripts/cpu_code_speed.sh; docs/benchmarks.md).
 // Both keep -ffp-contract=off and use only correctly rounded operations,
 // so they draw and count the same beams bit for bit; cpu_code_test checks
 // that on every light type, the pinhole, exact colour and the profile.
