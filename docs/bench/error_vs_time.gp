@@ -10,260 +10,260 @@ set title 'point_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_0 << EOD
-0.0012291 2.45367
-0.00126899 0.800998
-0.00332823 0.252205
-0.0232489 0.0789241
-0.22141 0.0249586
-2.15545 0.0080504
+0.000873246 2.48151
+0.00105898 0.814132
+0.00273939 0.250412
+0.0193007 0.0737579
+0.190728 0.0242166
+1.85321 0.00768919
 EOD
 $d1_0 << EOD
-0.000257552 2.45367
-0.00104086 0.800998
-0.00734741 0.252205
-0.0405824 0.0789241
-0.353837 0.0249586
-4.14736 0.0080504
+0.00035017 2.48151
+0.000920846 0.814132
+0.00621755 0.250412
+0.0339517 0.0737579
+0.310783 0.0242166
+2.85182 0.00768918
 EOD
-plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0080504*(x/2.15545)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00768919*(x/1.85321)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'point_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_1 << EOD
-0.00102914 3.92447
-0.00134677 1.32748
-0.00413772 0.424239
-0.0241429 0.125531
-0.20273 0.0389811
-2.00669 0.0125417
+0.00163051 3.13913
+0.00138514 1.24226
+0.00422863 0.386499
+0.0306609 0.127715
+0.184145 0.039639
+1.81903 0.0126134
 EOD
 $d1_1 << EOD
-0.000496467 3.92447
-0.00112349 1.32748
-0.00595494 0.424239
-0.0467539 0.125531
-0.444984 0.0389811
-4.33288 0.0125417
+0.000286716 3.13913
+0.00078879 1.24226
+0.00366764 0.386499
+0.0277116 0.127715
+0.271969 0.039639
+2.44645 0.0126134
 EOD
-plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.0125417*(x/2.00669)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0126134*(x/1.81903)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_2 << EOD
-0.000785856 1.50901
-0.00101523 0.473034
-0.00289563 0.145537
-0.0208907 0.0485828
-0.17263 0.0153916
-1.83256 0.00474422
+0.00104344 1.43653
+0.00130465 0.481258
+0.00343493 0.160017
+0.0230917 0.0486866
+0.236595 0.0149436
+2.36056 0.00500333
 EOD
 $d1_2 << EOD
-0.000342978 1.50901
-0.00167959 0.473034
-0.00767829 0.145537
-0.0642294 0.0485828
-0.671403 0.0153916
-6.15798 0.00474422
+0.000214768 1.43653
+0.00082235 0.481258
+0.00500081 0.160017
+0.0426254 0.0486866
+0.413365 0.0149436
+4.14305 0.00500333
 EOD
-plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00474422*(x/1.83256)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00500333*(x/2.36056)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_3 << EOD
-0.000572139 2.01884
-0.000656645 0.618676
-0.00242982 0.192406
-0.0198993 0.0605442
-0.202864 0.0184
-1.70655 0.00625028
+0.00104588 2.09389
+0.00155076 0.610668
+0.0042874 0.184784
+0.0245887 0.0576963
+0.232344 0.0187082
+2.34432 0.00605956
 EOD
 $d1_3 << EOD
-0.000230532 2.01884
-0.000924142 0.618676
-0.00688694 0.192406
-0.0814774 0.0605442
-0.548666 0.0184
-4.94478 0.00625028
+0.000180518 2.09389
+0.00077437 0.610668
+0.00490576 0.184784
+0.0475868 0.0576963
+0.477839 0.0187082
+3.93662 0.00605956
 EOD
-plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00625028*(x/1.70655)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00605956*(x/2.34432)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'furnace' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_4 << EOD
-0.000387034 1.95744
-0.000696153 0.691132
-0.00170685 0.234013
-0.0137175 0.0714504
-0.132866 0.0203218
-1.41492 0.00700781
+0.000717544 2.15149
+0.000894557 0.705714
+0.00441284 0.223067
+0.0194906 0.0688873
+0.211616 0.0237385
+1.77018 0.0066814
 EOD
 $d1_4 << EOD
-0.000142241 1.95744
-0.000780839 0.691132
-0.0048489 0.234013
-0.0401012 0.0714504
-0.422973 0.0203218
-4.40992 0.0070078
+0.000157554 2.15149
+0.00363647 0.705714
+0.00591672 0.223067
+0.0375789 0.0688873
+0.308436 0.0237385
+3.00693 0.0066814
 EOD
-plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00700781*(x/1.41492)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0066814*(x/1.77018)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_d65' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_5 << EOD
-0.0021099 0.663477
-0.00215971 0.205715
-0.00446888 0.0652183
-0.0236461 0.0189764
-0.211498 0.00626652
-1.99393 0.00201212
+0.00218461 0.594722
+0.00244551 0.203314
+0.00444711 0.0611355
+0.0256153 0.0189767
+0.232411 0.00615257
+2.18559 0.00196103
 EOD
 $d1_5 << EOD
-0.000131085 0.663477
-0.000710594 0.205715
-0.00540695 0.0652183
-0.0451482 0.0189764
-0.443674 0.00626653
-5.0144 0.00201212
+0.000111876 0.594722
+0.000581913 0.203314
+0.00403385 0.0611355
+0.0317938 0.0189767
+0.319676 0.00615257
+3.69582 0.00196104
 EOD
-plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/1.99393)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.18559)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_a' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_6 << EOD
-0.00171919 0.663477
-0.00196937 0.205715
-0.00423174 0.0652183
-0.0273001 0.0189764
-0.261603 0.00626653
-2.34123 0.00201212
+0.00223535 0.594722
+0.0023464 0.203314
+0.00505392 0.0611355
+0.0266715 0.0189767
+0.234704 0.00615257
+2.14739 0.00196103
 EOD
 $d1_6 << EOD
-0.000120338 0.663477
-0.000702903 0.205715
-0.00520027 0.0652183
-0.0504086 0.0189764
-0.440406 0.00626652
-4.47237 0.00201212
+0.000180568 0.594722
+0.000932254 0.203314
+0.00553914 0.0611355
+0.0372723 0.0189767
+0.382904 0.00615257
+3.88684 0.00196104
 EOD
-plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/2.34123)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.14739)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f2' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_7 << EOD
-0.0026274 0.663477
-0.00276917 0.205715
-0.00478737 0.0652183
-0.0241689 0.0189764
-0.216761 0.00626652
-1.98999 0.00201212
+0.0020537 0.594722
+0.0022879 0.203314
+0.00462329 0.0611355
+0.0278363 0.0189767
+0.264332 0.00615257
+2.56678 0.00196103
 EOD
 $d1_7 << EOD
-0.000124534 0.663477
-0.000684195 0.205715
-0.00494459 0.0652183
-0.0437539 0.0189764
-0.436591 0.00626653
-4.51191 0.00201212
+0.000166187 0.594722
+0.00086314 0.203314
+0.00580127 0.0611355
+0.036987 0.0189767
+0.370195 0.00615257
+3.79216 0.00196103
 EOD
-plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/1.98999)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.56678)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f11' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_8 << EOD
-0.00247854 0.663477
-0.00279378 0.205715
-0.00460631 0.0652183
-0.0241325 0.0189764
-0.217612 0.00626652
-2.6173 0.00201212
+0.0017286 0.594722
+0.00180814 0.203314
+0.0040841 0.0611355
+0.0274143 0.0189767
+0.256687 0.00615257
+2.608 0.00196103
 EOD
 $d1_8 << EOD
-0.000117734 0.663477
-0.000665278 0.205715
-0.00495137 0.0652183
-0.0428828 0.0189764
-0.420916 0.00626653
-4.31414 0.00201212
+0.000166908 0.594722
+0.000877572 0.203314
+0.00698817 0.0611355
+0.038906 0.0189767
+0.37439 0.00615257
+3.69385 0.00196103
 EOD
-plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/2.6173)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.608)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_led_b3' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_9 << EOD
-0.00169067 0.663477
-0.00185126 0.205715
-0.00426234 0.0652183
-0.0255605 0.0189764
-0.219264 0.00626652
-1.9555 0.00201212
+0.0018628 0.594722
+0.00209564 0.203314
+0.00454278 0.0611355
+0.0278896 0.0189767
+0.259971 0.00615257
+2.26607 0.00196103
 EOD
 $d1_9 << EOD
-0.000197293 0.663477
-0.00105437 0.205715
-0.00677618 0.0652183
-0.0504673 0.0189764
-0.488588 0.00626653
-3.93792 0.00201212
+0.000178335 0.594722
+0.000881879 0.203314
+0.00572631 0.0611355
+0.0367389 0.0189767
+0.383368 0.00615257
+3.24149 0.00196103
 EOD
-plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00201212*(x/1.9555)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.26607)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'laser_532' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_10 << EOD
-0.000535485 0.745339
-0.000788771 0.237721
-0.00247139 0.0773089
-0.0204142 0.0238119
-0.190096 0.00742963
-1.72589 0.00228176
+0.000831084 0.73791
+0.00117116 0.23595
+0.0028118 0.0767803
+0.0223863 0.023128
+0.24439 0.00729035
+2.15361 0.00237266
 EOD
 $d1_10 << EOD
-9.8796e-05 0.745339
-0.000637867 0.237721
-0.00444476 0.0773089
-0.0392762 0.0238119
-0.379683 0.00742963
-3.90599 0.00228175
+0.000102251 0.73791
+0.000566841 0.23595
+0.00406876 0.0767803
+0.0366191 0.023128
+0.348307 0.00729035
+3.42675 0.00237266
 EOD
-plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00228176*(x/1.72589)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00237266*(x/2.15361)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_rect' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_11 << EOD
-0.00256102 0.651221
-0.00277675 0.191512
-0.00678106 0.0673776
-0.0369711 0.0199254
-0.339213 0.00640466
-2.93259 0.00224578
+0.00341088 0.661868
+0.00408032 0.230997
+0.00765573 0.0636716
+0.0415411 0.020916
+0.378916 0.00644784
+3.71866 0.00203705
 EOD
 $d1_11 << EOD
-0.000259636 0.651221
-0.00103693 0.191512
-0.00661783 0.0673777
-0.0740525 0.0199254
-0.760164 0.00640467
-5.75936 0.00224578
+0.000274698 0.661868
+0.00100223 0.230997
+0.0066705 0.0636716
+0.060547 0.020916
+0.601606 0.00644784
+6.11476 0.00203705
 EOD
-plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00224578*(x/2.93259)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00203705*(x/3.71866)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_small' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_12 << EOD
-0.00276726 0.878509
-0.00343625 0.265263
-0.00950026 0.0888789
-0.0378421 0.0285845
-0.435147 0.00867623
-4.51988 0.00283295
+0.00319276 0.831923
+0.00338352 0.268993
+0.00633973 0.0822313
+0.0372283 0.025986
+0.353113 0.00857101
+3.50285 0.00284146
 EOD
 $d1_12 << EOD
-0.000372913 0.878509
-0.00144317 0.265263
-0.00610043 0.0888789
-0.0608274 0.0285845
-0.553224 0.00867623
-5.19323 0.00283295
+0.000171505 0.831923
+0.000859475 0.268993
+0.00633691 0.0822313
+0.0560647 0.025986
+0.549425 0.00857101
+5.32181 0.00284147
 EOD
-plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads' noenhanced, 0.00283295*(x/4.51988)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00284146*(x/3.50285)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 unset multiplot
