@@ -90,16 +90,12 @@ if command -v flock > /dev/null; then
   exec 9> "$work/.lock"
   flock -n 9 || die "another check_identical_images run is using $work"
 fi
-export MESA_SHADER_CACHE_DIR=$work/mesa_shader_cache
-if [[ -z ${XDG_RUNTIME_DIR:-} ]]; then
-  [[ -d $work/xdg_runtime ]] || mkdir -m 700 "$work/xdg_runtime"
-  export XDG_RUNTIME_DIR=$work/xdg_runtime
-fi
 start=$SECONDS
 
 # run_logged and build_base_spectrace.
 # shellcheck source=lib/base_build.sh
 source "$root/scripts/lib/base_build.sh"
+use_scratch_env
 
 # 1. The working tree's binaries, in build/.
 echo "check_identical_images: building the working tree's spectrace and exr_pixels_equal in build/"

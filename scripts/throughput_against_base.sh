@@ -33,14 +33,10 @@ root=$(pwd -P)
 base_sha=$(git rev-parse --verify -q "$base_rev^{commit}") || die "unknown revision '$base_rev'"
 work=$root/build-base
 mkdir -p "$work/logs" "$work/throughput"
-export MESA_SHADER_CACHE_DIR=$work/mesa_shader_cache
-if [[ -z ${XDG_RUNTIME_DIR:-} ]]; then
-  [[ -d $work/xdg_runtime ]] || mkdir -m 700 "$work/xdg_runtime"
-  export XDG_RUNTIME_DIR=$work/xdg_runtime
-fi
 # run_logged and build_base_spectrace.
 # shellcheck source=lib/base_build.sh
 source "$root/scripts/lib/base_build.sh"
+use_scratch_env
 echo "throughput_against_base: building the working tree and $base_rev (${base_sha:0:12})"
 [[ -f build/CMakeCache.txt ]] || run_logged "$work/logs/tree-configure.log" cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 run_logged "$work/logs/tree-build.log" cmake --build build -j "$jobs" --target spectrace exr_blocks_agree

@@ -1,6 +1,17 @@
 # Sourced by scripts that compare the working tree with an older revision.
 # Needs die (prints its message and exits 2).
 
+# use_scratch_env: Mesa's shader cache, and an XDG runtime folder when the
+# session has none, inside $work, so that runs neither read nor fill the
+# user's own caches. Needs $work.
+use_scratch_env() {
+  export MESA_SHADER_CACHE_DIR=$work/mesa_shader_cache
+  if [[ -z ${XDG_RUNTIME_DIR:-} ]]; then
+    [[ -d $work/xdg_runtime ]] || mkdir -m 700 "$work/xdg_runtime"
+    export XDG_RUNTIME_DIR=$work/xdg_runtime
+  fi
+}
+
 # run_logged LOG CMD...: runs a build step quietly into LOG; on failure shows
 # its tail and stops.
 run_logged() {
