@@ -4,6 +4,7 @@
 // scene rendered on a fresh device (reused histograms start from zero).
 #include <gtest/gtest.h>
 
+#include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "support/test_scenes.h"
 
@@ -70,6 +71,24 @@ TEST(BufferReuse, BuffersThatDoNotFitAreAllocated) {
   const uint64_t afterSmall = device->bufferAllocations();
   renderOn(*device, bigScene());
   EXPECT_GT(device->bufferAllocations(), afterSmall) << "the big histogram cannot fit in the small one's buffers";
+}
+
+// A buffer is reused only for a role whose usage it has: one made without
+// the uniform-buffer bit is never handed out to be bound as a uniform buffer.
+TEST(BufferReuse, ReusedBuffersHaveTheUsageAsked) {
+  const vk_util::Context& context = testing::sharedVulkan();
+  TracerBufferPool pool;
+  pool.giveBack("table", pool.take(context, "table", 256, vk_util::MemoryPlacement::DeviceLocal));
+  EXPECT_EQ(pool.allocations(), 1u);
+  const vk_util::Buffer uniform = pool.take(context, "table", 64, vk_util::MemoryPlacement::DeviceLocal,
+                                            vk::BufferUsageFlagBits::eUniformBuffer);
+  EXPECT_EQ(pool.allocations(), 2u) << "the storage-only buffer must not be reused as a uniform buffer";
+  EXPECT_TRUE(uniform.usage() & vk::BufferUsageFlagBits::eUniformBuffer);
+  pool.giveBack("constants", pool.take(context, "constants", 64, vk_util::MemoryPlacement::DeviceLocal,
+                                       vk::BufferUsageFlagBits::eUniformBuffer));
+  const vk_util::Buffer again = pool.take(context, "constants", 64, vk_util::MemoryPlacement::DeviceLocal,
+                                          vk::BufferUsageFlagBits::eUniformBuffer);
+  EXPECT_EQ(pool.allocations(), 3u) << "a buffer with the usage asked is reused";
 }
 
 }  // namespace

@@ -19,10 +19,15 @@ static_assert(kMaxBins / device::kResolveBinsPerIteration < 65535, "resolve.comp
 
 namespace {
 
+// The trace's small tables are bound as storage buffers and, when they fit
+// (uniform_tables.h), also as uniform buffers.
+constexpr vk::BufferUsageFlags kTableUsage = vk::BufferUsageFlagBits::eUniformBuffer;
+
 template <typename T>
 Buffer uploadedBuffer(TracerBufferPool& pool, const vk_util::Context& context, const std::string& role,
-                      const std::vector<T>& data) {
-  Buffer buffer = pool.take(context, role, std::max<vk::DeviceSize>(sizeof(T) * data.size(), 16), MemoryPlacement::DeviceLocal);
+                      const std::vector<T>& data, vk::BufferUsageFlags usage = {}) {
+  Buffer buffer = pool.take(context, role, std::max<vk::DeviceSize>(sizeof(T) * data.size(), 16), MemoryPlacement::DeviceLocal,
+                            usage);
   buffer.upload(data.data(), sizeof(T) * data.size());
   return buffer;
 }
@@ -34,18 +39,19 @@ std::shared_ptr<TracerBufferPool> poolOrOwn(std::shared_ptr<TracerBufferPool> po
 }  // namespace
 
 Buffer TracerBufferPool::take(const vk_util::Context& context, const std::string& role, vk::DeviceSize bytes,
-                              MemoryPlacement placement) {
+                              MemoryPlacement placement, vk::BufferUsageFlags usage) {
   {
     const std::lock_guard lock(mutex_);
     const auto it = free_.find(role);
-    if (it != free_.end() && it->second.size() >= bytes && it->second.placement() == placement) {
+    if (it != free_.end() && it->second.size() >= bytes && it->second.placement() == placement &&
+        (it->second.usage() & usage) == usage) {
       Buffer reused = std::move(it->second);
       free_.erase(it);
       return reused;
     }
     ++allocations_;
   }
-  return Buffer(context, bytes, {}, placement);
+  return Buffer(context, bytes, usage, placement);
 }
 
 void TracerBufferPool::giveBack(const std::string& role, Buffer buffer) {
@@ -208,13 +214,16 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
                                    context.info().name),
               HistogramSplit::forDevice(plan.film.storedPixelCount(), plan.film.countersPerPixel(),
                                         context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize))),
-      traceConstants_(buffers_->take(context, "trace constants", sizeof(device::TraceConstants), MemoryPlacement::DeviceLocal)),
-      lights_(uploadedBuffer(*buffers_, context, "lights", paddedTable(plan.device.lights, uniformTables_.lights))),
-      intervals_(uploadedBuffer(*buffers_, context, "intervals", paddedTable(plan.device.intervals, uniformTables_.intervals))),
+      traceConstants_(buffers_->take(context, "trace constants", sizeof(device::TraceConstants), MemoryPlacement::DeviceLocal,
+                                     vk::BufferUsageFlagBits::eUniformBuffer)),
+      lights_(uploadedBuffer(*buffers_, context, "lights", paddedTable(plan.device.lights, uniformTables_.lights), kTableUsage)),
+      intervals_(uploadedBuffer(*buffers_, context, "intervals", paddedTable(plan.device.intervals, uniformTables_.intervals),
+                                kTableUsage)),
       aliasColumns_(uploadedBuffer(*buffers_, context, "alias columns",
-                                   paddedTable(plan.device.aliasColumns, uniformTables_.aliasColumns))),
+                                   paddedTable(plan.device.aliasColumns, uniformTables_.aliasColumns), kTableUsage)),
       unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
-      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", paddedTable(plan.device.cmfTable, uniformTables_.cmfNodes))),
+      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", paddedTable(plan.device.cmfTable, uniformTables_.cmfNodes),
+                               kTableUsage)),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),

@@ -54,8 +54,10 @@ std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const Resolve
 // larger than asked: users keep their own sizes and zero what they count into.
 class TracerBufferPool {
  public:
+  // `usage`: what the buffer needs beyond storage and transfers (a reused
+  // buffer has at least that).
   vk_util::Buffer take(const vk_util::Context& context, const std::string& role, vk::DeviceSize bytes,
-                       vk_util::MemoryPlacement placement);
+                       vk_util::MemoryPlacement placement, vk::BufferUsageFlags usage = {});
   // Keeps the larger of `buffer` and any buffer already held for `role`.
   void giveBack(const std::string& role, vk_util::Buffer buffer);
   // Buffers allocated so far (reuses not counted).

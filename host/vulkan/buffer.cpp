@@ -38,7 +38,7 @@ std::string placementName(MemoryPlacement p) {
 }  // namespace
 
 Buffer::Buffer(const Context& context, vk::DeviceSize bytes, vk::BufferUsageFlags usage, MemoryPlacement placement)
-    : context_(&context), size_(bytes), placement_(placement) {
+    : context_(&context), size_(bytes), placement_(placement), usage_(usage) {
   const DeviceInfo& info = context.info();
   if (bytes == 0) throw VulkanError("A Buffer of 0 bytes was requested; Vulkan buffers must not be empty");
   // Rounded up to whole words so vkCmdFillBuffer(VK_WHOLE_SIZE) covers every requested byte.
@@ -51,7 +51,7 @@ Buffer::Buffer(const Context& context, vk::DeviceSize bytes, vk::BufferUsageFlag
     buffer_ = vk::raii::Buffer(
         context.device(),
         vk::BufferCreateInfo{.size = allocBytes,
-                             .usage = usage | vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformBuffer |
+                             .usage = usage | vk::BufferUsageFlagBits::eStorageBuffer |
                                       vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
                              .sharingMode = vk::SharingMode::eExclusive});
   } catch (const vk::SystemError& e) {
@@ -92,6 +92,7 @@ Buffer::Buffer(Buffer&& o) noexcept
     : context_(o.context_),
       size_(std::exchange(o.size_, 0)),
       placement_(o.placement_),
+      usage_(o.usage_),
       memory_(std::move(o.memory_)),
       buffer_(std::move(o.buffer_)),
       mapped_(std::exchange(o.mapped_, nullptr)) {}
@@ -103,6 +104,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     context_ = o.context_;
     size_ = std::exchange(o.size_, 0);
     placement_ = o.placement_;
+    usage_ = o.usage_;
     mapped_ = std::exchange(o.mapped_, nullptr);
   }
   return *this;

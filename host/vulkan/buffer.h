@@ -18,7 +18,8 @@ enum class MemoryPlacement {
 class Buffer {
  public:
   // `bytes` > 0 and at most the device's maxMemoryAllocationSize. The usage
-  // always gets eStorageBuffer | eTransferSrc | eTransferDst on top.
+  // always gets eStorageBuffer | eTransferSrc | eTransferDst on top; add
+  // eUniformBuffer for a buffer bound as a uniform buffer.
   Buffer(const Context&, vk::DeviceSize bytes, vk::BufferUsageFlags usage, MemoryPlacement);
   Buffer(Buffer&&) noexcept;
   Buffer& operator=(Buffer&&) noexcept;  // a moved-from Buffer is empty (size 0, null handle)
@@ -38,6 +39,7 @@ class Buffer {
   vk::Buffer handle() const { return *buffer_; }
   vk::DeviceSize size() const { return size_; }  // as requested
   MemoryPlacement placement() const { return placement_; }
+  vk::BufferUsageFlags usage() const { return usage_; }  // as requested, without the flags always added
   bool hostMapped() const { return mapped_ != nullptr; }  // host copies are plain memcpy
 
  private:
@@ -49,6 +51,7 @@ class Buffer {
   const Context* context_;
   vk::DeviceSize size_;
   MemoryPlacement placement_;
+  vk::BufferUsageFlags usage_;
   // Declared before the buffer so the buffer is destroyed first.
   vk::raii::DeviceMemory memory_{nullptr};
   vk::raii::Buffer buffer_{nullptr};
