@@ -141,11 +141,11 @@ std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t b
         sumX += xys[p][0];
         sumY += xys[p][1];
       }
-      const double n = double(pixels);
+      const double n = double(pixels), meanX = sumX / n, meanY = sumY / n;
       double squaresX = 0, squaresY = 0;
       for (const auto& xy : xys) {
-        squaresX += (xy[0] - sumX / n) * (xy[0] - sumX / n);
-        squaresY += (xy[1] - sumY / n) * (xy[1] - sumY / n);
+        squaresX += (xy[0] - meanX) * (xy[0] - meanX);
+        squaresY += (xy[1] - meanY) * (xy[1] - meanY);
       }
       const double varX = squaresX / (n - 1), varY = squaresY / (n - 1);
       auto chromaError = [&](const std::array<double, 3>& xyz) {

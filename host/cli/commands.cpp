@@ -30,7 +30,6 @@ bool namesFolder(const std::filesystem::path& output) {
   return (!text.empty() && text.back() == '/') || std::filesystem::is_directory(output, ec);
 }
 
-// --state, --resume and --shard on a job (throws UsageError).
 // --cpu-code: none for "auto"; a code this processor cannot run is a usage
 // error, not a crash on an illegal instruction.
 std::optional<CpuCode> cpuCodeOption(const std::string& text) {
@@ -41,6 +40,7 @@ std::optional<CpuCode> cpuCodeOption(const std::string& text) {
   return code;
 }
 
+// --state, --resume and --shard on a job (throws UsageError).
 void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   if (command.shard) {
     uint64_t index = 0, count = 0;
