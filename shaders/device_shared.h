@@ -46,7 +46,12 @@ START_BINDING(TraceBinding)
   kBindingLightsUniform = 8,
   kBindingSpectralIntervalsUniform = 9,
   kBindingCmfTableUniform = 10,
-  kBindingAliasColumnsUniform = 11
+  kBindingAliasColumnsUniform = 11,
+  // Scene objects (transport.h): what a beam can hit between light and camera.
+  kBindingPrimitives = 12,   // Primitive, in the BVH's leaf order
+  kBindingBvhNodes = 13,     // BvhNode, depth first, the root at 0
+  kBindingMaterials = 14,    // Material
+  kBindingReflectance = 15   // float nodes of the materials' reflectance tables
 END_BINDING();
 START_BINDING(ResolveBinding)
   kBindingResolveConstants = 0,
@@ -104,7 +109,8 @@ START_BINDING(SpecConstantId)
   kSpecUniformLights = 11,
   kSpecUniformIntervals = 12,
   kSpecUniformCmfNodes = 13,
-  kSpecUniformAliasColumns = 14
+  kSpecUniformAliasColumns = 14,
+  kSpecObjects = 15          // 0: no scene objects (transport compiled out); 1: some; 2: run time
 END_BINDING();
 // Stages of the bench's cost profile (shaders/profile.h), each adding one
 // part of the kernel to the one before.
@@ -137,6 +143,58 @@ SPECTRACE_CONSTANT uint kWeightUnitsFractional = 16777216u;  // 2^24
 SPECTRACE_CONSTANT uint kRngBlockSpectral = 0;   // interval (64 bit), position in interval, spare (rounding)
 SPECTRACE_CONSTANT uint kRngBlockGeometry = 1;   // origin u, origin v, direction u, direction v
 SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (spare)
+// Transport: bounce b (the b-th surface a beam meets, from 0) draws block
+// kRngBlockBounce + 2b (choice, direction u, direction v, spare) and, for a
+// camera connection, kRngBlockBounce + 2b + 1 (aperture u, aperture v,
+// rounding, spare): keyed on (seed, beam, bounce), as every block is.
+SPECTRACE_CONSTANT uint kRngBlockBounce = 3;
+
+// Scene objects. Shapes become primitives in the camera frame (metres,
+// single precision, built on the host in double): a mesh one triangle per
+// face, the others one primitive each.
+SPECTRACE_CONSTANT uint kPrimitiveTriangle = 0;  // a: vertex 0, b: vertex 1 - vertex 0, c: vertex 2 - vertex 0
+SPECTRACE_CONSTANT uint kPrimitiveRect = 1;      // a: centre, b, c: half edges (b x c along the normal)
+SPECTRACE_CONSTANT uint kPrimitiveDisk = 2;      // a: centre, b: unit normal, c.x: radius^2
+SPECTRACE_CONSTANT uint kPrimitiveSphere = 3;    // a: centre, b.x: radius, b.y: radius^2
+struct Primitive {
+  vec3 a;
+  uint type;
+  vec3 b;
+  uint material;  // index into the materials
+  vec3 c;
+  uint padding0;
+};
+// A node of the BVH (pbrt-v4's LinearBVHNode, 32 bytes): bounds rounded
+// outwards to float from double. An interior node's first child follows it;
+// `next` is its second child. A leaf's primitives are [next, next + count).
+struct BvhNode {
+  vec3 boundsMin;
+  uint next;
+  vec3 boundsMax;
+  uint countAxis;  // bits 0-15: primitive count (0: interior), bits 16-17: split axis
+};
+// Traversal's fixed stack; the builder never makes a deeper tree.
+SPECTRACE_CONSTANT uint kBvhStackSize = 32u;
+SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
+
+SPECTRACE_CONSTANT uint kMaterialAbsorber = 0;
+SPECTRACE_CONSTANT uint kMaterialDiffuse = 1;
+SPECTRACE_CONSTANT uint kMaterialMirror = 2;
+SPECTRACE_CONSTANT uint kMaterialDielectric = 3;
+// A material. Reflectance (diffuse, mirror): linear between nodes
+// reflectance[first + i] at lambda0 + i / nodesPerNm, holding its end values
+// outside. Dielectric: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in micrometres
+// (a constant ior n is B = (n^2 - 1, 0, 0), C = 0).
+struct Material {
+  uint type;
+  uint reflectanceFirst;
+  uint reflectanceCount;   // >= 1
+  float reflectanceLambda0;
+  float reflectanceNodesPerNm;
+  vec3 sellmeierB;
+  vec3 sellmeierC;         // micrometres^2
+  uint padding0;
+};
 
 // One light, in the camera frame (metres, single precision). Built on the
 // host from the scene in double precision.
@@ -230,6 +288,12 @@ struct TraceConstants {
   uint windowHeight;
   uint lightAliasBits;      // the light choice's alias columns: 2^lightAliasBits, from column 0
   uint64_t seed;
+  // Scene objects (transport.h). objectPrimitives 0: nothing between the
+  // lights and the camera.
+  uint objectPrimitives;
+  uint maxBounces;          // surfaces a beam may scatter from before it is dropped
+  uint connect;             // 1: connect diffuse vertices to the camera (light tracing)
+  float cameraDepth;        // the camera's body: the box |x| <= half size, 0 <= z <= depth
 };
 
 // The film's counter layout, defined only here: each stored pixel owns
@@ -254,7 +318,8 @@ struct BeamRecord {
   uint pixel;   // kBeamMissed for a beam that was not counted
   uint bin;
   uint units;   // what the beam adds to its bin (weightUnits x its weight ratio)
-  uint padding0;
+  uint contributions;  // counts the beam made (camera connections add one each); pixel, bin
+                       // and units are its last one's
 };
 
 // Per-dispatch push constants of the trace pass.
@@ -343,7 +408,11 @@ inline constexpr BindingSlot kTraceBindings[] = {
     {kBindingLightsUniform, 1, true},
     {kBindingSpectralIntervalsUniform, 1, true},
     {kBindingCmfTableUniform, 1, true},
-    {kBindingAliasColumnsUniform, 1, true}};
+    {kBindingAliasColumnsUniform, 1, true},
+    {kBindingPrimitives, 1},
+    {kBindingBvhNodes, 1},
+    {kBindingMaterials, 1},
+    {kBindingReflectance, 1}};
 inline constexpr BindingSlot kCeilingBindings[] = {{kBindingCeilingCdf, 1}, {kBindingCeilingHistogram, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},
@@ -353,7 +422,10 @@ inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
 
 static_assert(sizeof(LightRecord) == 136);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 128);
+static_assert(sizeof(TraceConstants) == 144);
+static_assert(sizeof(Primitive) == 48);
+static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);
 static_assert(sizeof(TracePush) == 16);

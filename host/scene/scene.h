@@ -11,6 +11,7 @@
 
 #include "camera/camera.h"
 #include "lights/light.h"
+#include "scene/scene_object.h"
 #include "json/scene_error.h"
 #include "spectrum/spd.h"
 
@@ -26,12 +27,16 @@ struct SpectrumRange {
 struct RenderSettings {
   uint64_t beams = 10'000'000;
   uint64_t seed = 1;
+  // Surfaces a beam may scatter from (objects only); a beam that meets one
+  // more is dropped, a bias the reference tests bound.
+  uint32_t maxBounces = 64;
 };
 
 struct Scene {
   SpectrumRange spectrum;
   Camera camera;
   std::vector<Light> lights;
+  std::vector<SceneObject> objects;  // between the lights and the camera; may be empty
   RenderSettings render;
   std::string observer = "CIE1931_2";
   // "output": {"spectral": true}: the EXR also holds one channel per bin.
