@@ -160,4 +160,9 @@ const std::vector<const CsvTable*>& cieIlluminantTables() {
   return all;
 }
 
+const CsvTable& colorCheckerTable() {
+  static const CsvTable t = parseEmbedded(embedded::colorchecker24_ohta(), "colorchecker24_ohta.csv");
+  return t;
+}
+
 }  // namespace spectrace

@@ -34,5 +34,9 @@ const CsvTable& cie1931Table();      // xbar, ybar, zbar
 const CsvTable& cie1964Table();      // xbar10, ybar10, zbar10
 // The illuminant tables, in the order A, D50, D65, F, F3, LED.
 const std::vector<const CsvTable*>& cieIlluminantTables();
+// The 24 ColorChecker patches' reflectance (0-1), Ohta 1997, 380-780 nm at
+// 5 nm; the columns are the patch names in chart order ("dark_skin", ...,
+// "white_9.5", ..., "black_2").
+const CsvTable& colorCheckerTable();
 
 }  // namespace spectrace
