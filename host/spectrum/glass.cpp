@@ -1,0 +1,107 @@
+#include "spectrum/glass.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "embedded_glass.h"
+
+namespace spectrace {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const char* ws = " \t\r\v\f";
+  const size_t b = s.find_first_not_of(ws);
+  if (b == std::string_view::npos) return {};
+  const size_t e = s.find_last_not_of(ws);
+  return s.substr(b, e - b + 1);
+}
+
+// Parses "name,b1,b2,b3,c1_um2,c2_um2,c3_um2" rows after one header line.
+// The table is compiled in, so a malformed row is a build mistake: it throws
+// (at first use) rather than being skipped, so a test catches it.
+std::vector<SellmeierGlass> parseCatalogue(std::string_view text) {
+  constexpr std::string_view kSource = "embedded data/glass/sellmeier.csv";
+  std::vector<SellmeierGlass> glasses;
+  bool sawHeader = false;
+  int lineNo = 0;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t nl = text.find('\n', pos);
+    if (nl == std::string_view::npos) nl = text.size();
+    std::string_view line = text.substr(pos, nl - pos);
+    pos = nl + 1;
+    ++lineNo;
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    line = trim(line);
+    if (line.empty()) continue;
+    if (!sawHeader) {
+      sawHeader = true;
+      continue;
+    }
+    std::vector<std::string_view> fields;
+    for (size_t start = 0;;) {
+      const size_t comma = line.find(',', start);
+      fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    if (fields.size() != 7 || fields[0].empty())
+      throw std::runtime_error(fmt::format("{}:{}: expected a name and 6 coefficients", kSource, lineNo));
+    SellmeierGlass g;
+    g.name = std::string(fields[0]);
+    for (size_t i = 0; i < 6; ++i) {
+      const std::string_view f = fields[i + 1];
+      double v = 0.0;
+      const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+      if (ec != std::errc() || ptr != f.data() + f.size() || !std::isfinite(v))
+        throw std::runtime_error(fmt::format("{}:{}: '{}' is not a finite number", kSource, lineNo, f));
+      (i < 3 ? g.b[i] : g.cUm2[i - 3]) = v;
+    }
+    glasses.push_back(std::move(g));
+  }
+  return glasses;
+}
+
+const std::vector<SellmeierGlass>& catalogue() {
+  static const std::vector<SellmeierGlass> glasses = [] {
+    const auto bytes = embedded::glass_sellmeier();
+    return parseCatalogue(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  }();
+  return glasses;
+}
+
+}  // namespace
+
+const SellmeierGlass* glassNamed(std::string_view name) {
+  for (const SellmeierGlass& g : catalogue())
+    if (g.name == name) return &g;
+  return nullptr;
+}
+
+std::vector<std::string> glassNames() {
+  std::vector<std::string> names;
+  for (const SellmeierGlass& g : catalogue()) names.push_back(g.name);
+  return names;
+}
+
+double sellmeierIndex(const std::array<double, 3>& b, const std::array<double, 3>& cUm2, double lambdaNm) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const double lambdaUm = lambdaNm / 1000.0;  // exact for whole-um wavelengths, so poles are hit
+  const double l2 = lambdaUm * lambdaUm;
+  double n2 = 1.0;
+  for (size_t i = 0; i < 3; ++i) {
+    const double denom = l2 - cUm2[i];
+    if (denom == 0.0) return kNaN;
+    n2 += b[i] * l2 / denom;
+  }
+  // !(n2 > 0) also catches NaN inputs and inf/inf near a pole.
+  if (!(n2 > 0.0) || !std::isfinite(n2)) return kNaN;
+  return std::sqrt(n2);
+}
+
+}  // namespace spectrace
