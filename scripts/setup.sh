@@ -12,6 +12,7 @@ packages=(
   librandom123-dev libgtest-dev libboost-dev                     # Philox, tests, chi-square p-values
   gnuplot-nox                                                    # benchmark plots
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
+  libtinyobjloader-dev                                           # OBJ meshes of scene objects
 )
 # --- Vulkan validation (issue 14, section 4): SPECTRACE_VALIDATION=1 and
 # validation_test need the Khronos layer.

@@ -45,15 +45,18 @@ struct Scene {
   std::string sourceSha256;          // hex digest of the file's bytes
 };
 
-// Reads, parses and validates a scene file. Relative CSV paths resolve
-// against the scene file's folder.
+// Reads, parses and validates a scene file. Relative CSV and OBJ paths
+// resolve against the scene file's folder.
 Scene loadScene(const std::filesystem::path& file);
 // The scene's invariants, the same for scenes built in code and loaded
 // ones (the loader calls it): finite coordinates within the world bounds,
 // a spectrum range and bin count in range, a camera with a viewing direction
 // and an up vector off it, a sensor of positive size and a bounded pixel
-// count, and lights with a non-zero direction, positive size, cone in
-// (0, 180] degrees, and finite power >= 0. Throws SceneError
+// count, lights with a non-zero direction, positive size, cone in
+// (0, 180] degrees, and finite power >= 0, and objects with unit normals,
+// positive sizes, meshes of in-range indices and triangles of non-zero area,
+// reflectances in [0, 1], refractive indices finite and >= 1 over the
+// spectrum range, and dielectrics only on closed shapes. Throws SceneError
 // "<file or <scene>>: <field>: <what>".
 void validateScene(const Scene& scene);
 

@@ -11,7 +11,13 @@
 //   camera    {position, look_at, up, sensor{width_m, height_m, pixels},
 //              pinhole{distance_m, radius_m}, exposure_s}  required
 //   lights    [ {type, name, power_w, spd, ...type fields} ] required, non-empty
-//   render    {beams, seed}                                optional
+//   objects   [ {type, name, material, ...type fields} ]   optional (docs/objects.md)
+//             rect {center, normal, u_axis, size_m}, disk {center, normal,
+//             radius_m}, sphere {center, radius_m}, mesh {file (OBJ),
+//             transform{translate, rotate_deg, scale}}; material {type:
+//             absorber | diffuse | mirror (reflectance) | dielectric (glass |
+//             sellmeier{b, c_um2} | ior)}
+//   render    {beams, seed, max_bounces}                   optional
 //   output    {spectral}                                   optional
 #include "scene/scene.h"
 
@@ -27,6 +33,7 @@
 #include "json/input_file.h"
 #include "json/json_fields.h"
 #include "lights/light_type.h"
+#include "scene/object_field.h"
 #include "scene/scene_limits.h"
 #include "scene/spd_field.h"
 #include "scene/validate_scene.h"
@@ -159,10 +166,12 @@ Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, c
 }
 
 RenderSettings parseRender(const jf::Source& c, const Json& v, const std::string& p) {
-  checkObject(c, v, p, {"beams", "seed"}, "render");
+  checkObject(c, v, p, {"beams", "seed", "max_bounces"}, "render");
   RenderSettings r;
   if (auto* x = find(v, "beams")) r.beams = jf::getU64(c, *x, child(p, "beams"), 1);
   if (auto* x = find(v, "seed")) r.seed = jf::getU64(c, *x, child(p, "seed"), 0);
+  if (auto* x = find(v, "max_bounces"))
+    r.maxBounces = uint32_t(jf::getInt(c, *x, child(p, "max_bounces"), 1, kMaxBounces));
   return r;
 }
 
@@ -182,7 +191,7 @@ namespace {
 
 Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
   const jf::Source c = sourceFor(file);
-  static const Keys kTop = {"spectrum", "observer", "camera", "lights", "render", "output"};
+  static const Keys kTop = {"spectrum", "observer", "camera", "lights", "objects", "render", "output"};
   if (!root.is_object()) c.fail("", fmt::format("the top level must be a JSON object (got {})", describe(root)));
   checkObject(c, root, "", kTop, "the top level");
 
@@ -208,6 +217,16 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
     c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", lights.size(), kMaxLights));
   for (size_t i = 0; i < lights.size(); ++i)
     scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
+
+  if (auto* objects = find(root, "objects")) {
+    if (!objects->is_array())
+      c.fail("/objects", fmt::format("must be an array of objects (got {})", describe(*objects)));
+    if (objects->size() > size_t(kMaxObjects))
+      c.fail("/objects", fmt::format("has {} objects; a scene has at most {}", objects->size(), kMaxObjects));
+    uint64_t trianglesLeft = kMaxSceneTriangles;
+    for (size_t i = 0; i < objects->size(); ++i)
+      scene.objects.push_back(parseObject(c, (*objects)[i], child("/objects", i), scene.spectrum, trianglesLeft));
+  }
 
   if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
   if (auto* x = find(root, "output")) scene.outputSpectral = parseOutputSpectral(c, *x, "/output");

@@ -16,5 +16,14 @@ inline constexpr double kMaxWavelengthNm = 100000.0;  // 0.1 mm; keeps spectral 
 // real scenes have a handful.
 inline constexpr int kMaxLights = 4096;
 inline constexpr double kMaxKelvin = 1e6;  // hotter than any star; keeps Planck's law finite
+// Objects and their triangles: far above hand-made scenes and scanned
+// models, and the compiled primitives and BVH (about 100 bytes a triangle)
+// stay a few GB.
+inline constexpr int kMaxObjects = 100000;
+inline constexpr uint64_t kMaxSceneTriangles = 20'000'000;
+// Surfaces a beam may scatter from: beyond this a beam's weight is long gone.
+inline constexpr int kMaxBounces = 1024;
+// A constant refractive index ("ior"): above any transparent material's.
+inline constexpr double kMaxIor = 5.0;
 
 }  // namespace spectrace

@@ -56,6 +56,7 @@ struct SurfaceMaterial {
   std::vector<double> reflectanceNm;
   std::vector<double> reflectance;
   std::string reflectanceLabel;  // "0.8", "dark_skin", "paint.csv", ...
+  std::filesystem::path reflectanceFile;  // the CSV it was read from (an input: never an output); else empty
   // dielectric: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in micrometres; a
   // constant ior n is B = {n^2 - 1, 0, 0}, C = {0, 0, 0}.
   std::array<double, 3> sellmeierB{};

@@ -1,7 +1,8 @@
 // The "spd" field of a light: a CIE illuminant name, or one of the object
 // forms (blackbody, CSV file, inline table, line). The spectrum is resolved
 // here, over the scene's spectrum range; whether it emits inside that range
-// is validateScene's rule.
+// is validateScene's rule. Surfaces' reflectances take the same forms
+// (object_field.cpp).
 #include "scene/spd_field.h"
 
 #include <optional>
@@ -50,7 +51,8 @@ Spd callSpd(const jf::Source& c, const std::string& ptr, F&& f) {
 
 }  // namespace
 
-void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range, Light& light) {
+ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range) {
+  ResolvedSpd out;
   static const Keys kForms = {"blackbody_k", "csv", "table", "lambda_nm", "line_nm"};
   static const char* kFormsHelp =
       "a CIE illuminant name such as \"D65\", or an object with one of: {\"blackbody_k\": K}, {\"csv\": \"file.csv\"}, "
@@ -69,8 +71,8 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
       }
       return *s;
     });
-    light.spd = std::move(spd);
-    light.spdLabel = name;
+    out.spd = std::move(spd);
+    out.label = name;
   } else if (v.is_object()) {
     std::vector<std::string_view> present;
     for (auto f : kForms)
@@ -93,8 +95,8 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
       if (kelvin > kMaxKelvin)
         c.fail(kp, fmt::format("must be a temperature in kelvin, > 0 and <= {:g} (got {})", kMaxKelvin,
                                describe(v.at("blackbody_k"))));
-      light.spd = callSpd(c, kp, [&] { return makeBlackbodySpd(kelvin, range.minNm, range.maxNm); });
-      light.spdLabel = fmt::format("blackbody {} K", fmtNum(kelvin));
+      out.spd = callSpd(c, kp, [&] { return makeBlackbodySpd(kelvin, range.minNm, range.maxNm); });
+      out.label = fmt::format("blackbody {} K", fmtNum(kelvin));
     } else if (form == "csv") {
       checkObject(c, v, p, {"csv", "column"}, "a csv spd");
       std::string cp = child(p, "csv");
@@ -110,9 +112,9 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
                                                   : fmt::format(" (looked for {}, relative to the scene file's folder)",
                                                                 jsonQuoted(fs::absolute(resolved, ec).string()))));
       if (!fs::is_regular_file(resolved, ec)) c.fail(cp, fmt::format("{} is not a regular file", jsonQuoted(resolved.string())));
-      light.spd = callSpd(c, cp, [&] { return loadCsvSpd(resolved, column); });
-      light.spdLabel = "csv " + rel + (column ? " column " + *column : "");
-      light.spdFile = resolved;
+      out.spd = callSpd(c, cp, [&] { return loadCsvSpd(resolved, column); });
+      out.label = "csv " + rel + (column ? " column " + *column : "");
+      out.file = resolved;
     } else if (form == "table") {
       checkObject(c, v, p, {"table"}, "a table spd");
       std::string tp = child(p, "table");
@@ -129,8 +131,8 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
         lambda.push_back(getNumber(c, t[i][0], child(rp, size_t(0))));
         value.push_back(getNumber(c, t[i][1], child(rp, size_t(1))));
       }
-      light.spd = callSpd(c, tp, [&] { return makeTabulatedSpd(lambda, value); });
-      light.spdLabel = fmt::format("inline table ({} points)", t.size());
+      out.spd = callSpd(c, tp, [&] { return makeTabulatedSpd(lambda, value); });
+      out.label = fmt::format("inline table ({} points)", t.size());
     } else if (form == "lambda_nm") {
       checkObject(c, v, p, {"lambda_nm", "value"}, "a tabulated spd");
       std::vector<double> lambda = getNumberArray(c, require(c, v, p, "lambda_nm"), child(p, "lambda_nm"));
@@ -139,20 +141,28 @@ void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const Sp
         c.fail(child(p, "value"), fmt::format("has {} entries but lambda_nm has {}; they must be the same length",
                                               value.size(), lambda.size()));
       size_t n = lambda.size();
-      light.spd = callSpd(c, p, [&] { return makeTabulatedSpd(std::move(lambda), std::move(value)); });
-      light.spdLabel = fmt::format("inline table ({} points)", n);
+      out.spd = callSpd(c, p, [&] { return makeTabulatedSpd(std::move(lambda), std::move(value)); });
+      out.label = fmt::format("inline table ({} points)", n);
     } else {  // line_nm
       checkObject(c, v, p, {"line_nm", "fwhm_nm"}, "a line spd");
       double center = getPositive(c, v.at("line_nm"), child(p, "line_nm"));
       std::optional<double> fwhm;
       if (auto* x = find(v, "fwhm_nm")) fwhm = getPositive(c, *x, child(p, "fwhm_nm"));
-      light.spd = callSpd(c, p, [&] { return makeLineSpd(center, fwhm); });
-      light.spdLabel = fmt::format("line {} nm", fmtNum(center));
-      if (fwhm) light.spdLabel += fmt::format(" (FWHM {} nm)", fmtNum(*fwhm));
+      out.spd = callSpd(c, p, [&] { return makeLineSpd(center, fwhm); });
+      out.label = fmt::format("line {} nm", fmtNum(center));
+      if (fwhm) out.label += fmt::format(" (FWHM {} nm)", fmtNum(*fwhm));
     }
   } else {
     c.fail(p, fmt::format("must be {} (got {})", kFormsHelp, describe(v)));
   }
+  return out;
+}
+
+void parseSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range, Light& light) {
+  ResolvedSpd resolved = resolveSpd(c, v, p, range);
+  light.spd = std::move(resolved.spd);
+  light.spdLabel = std::move(resolved.label);
+  light.spdFile = std::move(resolved.file);
 }
 
 }  // namespace spectrace

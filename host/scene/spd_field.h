@@ -1,5 +1,7 @@
 #pragma once
-// Inside the scene module: reading a light's "spd" field.
+// Inside the scene module: reading a spectrum field (a light's "spd", an
+// object's "reflectance").
+#include <filesystem>
 #include <string>
 
 #include "json/json_fields.h"
@@ -7,7 +9,20 @@
 
 namespace spectrace {
 
-// Resolves the spd value `v` at `ptr` into light.spd and light.spdLabel.
+// A spectrum read from a field, before it is given to a light or a surface.
+struct ResolvedSpd {
+  Spd spd;
+  std::string label;           // "D65", "blackbody 2700 K", "csv lamp.csv", ...
+  std::filesystem::path file;  // the CSV file it was read from, else empty
+};
+
+// Resolves the spd value `v` at `ptr` (a CIE illuminant name or one of the
+// object forms), tabulated over `range` where the form needs one (blackbody).
+ResolvedSpd resolveSpd(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr,
+                       const SpectrumRange& range);
+
+// Resolves the spd value `v` at `ptr` into light.spd, light.spdLabel and
+// light.spdFile.
 void parseSpd(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr,
               const SpectrumRange& range, Light& light);
 

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "lights/light_type.h"
+#include "scene/obj_mesh.h"
 #include "scene/scene_limits.h"
 
 namespace spectrace {
@@ -164,6 +165,172 @@ void validateLight(const Light& light, size_t index, const Scene& scene, const S
   if (c.requireEmission) checkEmission(light, scene.spectrum, check);
 }
 
+// An object's view of the checker: keys relative to the object, messages
+// with its name.
+struct ObjectChecker {
+  const SceneChecker& c;
+  std::string at, note;
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const { c.fail(at + "/" + key, what, note); }
+  std::string got(const std::string& key, double fallback) const { return c.got(at + "/" + key, fallback); }
+  std::string got(const std::string& key, const glm::dvec3& fallback) const { return c.got(at + "/" + key, fallback); }
+};
+
+void checkObjectLength(const ObjectChecker& check, const std::string& key, double value) {
+  if (!(std::isfinite(value) && value > 0.0 && value <= kMaxCoordinateM))
+    check.fail(key, fmt::format("must be a length in metres, > 0 and <= {:g} (got {})", kMaxCoordinateM,
+                                check.got(key, value)));
+}
+
+// Placement vectors of shapes built in code must already be unit length
+// (the loader normalises what a file gives).
+constexpr double kUnitEps = 1e-9;
+
+void checkUnit(const ObjectChecker& check, const std::string& key, const glm::dvec3& v) {
+  const double length = glm::length(v);
+  if (!finite(v) || !(std::abs(length - 1.0) <= kUnitEps))
+    check.fail(key, fmt::format("must be a unit vector (got {}, of length {})", check.got(key, v), jf::fmtNum(length)));
+}
+
+void validateShape(const Shape& shape, const ObjectChecker& check) {
+  if (shape.type != ShapeType::Mesh) checkPoint(check.c, check.at + "/center", shape.center, check.note);
+  if (shape.type == ShapeType::Rect || shape.type == ShapeType::Disk) checkUnit(check, "normal", shape.normal);
+  if (shape.type == ShapeType::Disk || shape.type == ShapeType::Sphere) checkObjectLength(check, "radius_m", shape.radiusM);
+  switch (shape.type) {
+    case ShapeType::Rect: {
+      checkObjectLength(check, "size_m/0", shape.sizeM.x);
+      checkObjectLength(check, "size_m/1", shape.sizeM.y);
+      const glm::dvec3& u = shape.uAxis;
+      if (!finite(u) || !jf::safeNormalize(u)) check.fail("u_axis", "must be finite and not zero-length");
+      if (glm::length(glm::cross(*jf::safeNormalize(u), shape.normal)) < kCollinearEps)
+        check.fail("u_axis", fmt::format("{} is parallel to the normal; u_axis must lie (roughly) in the rect's plane",
+                                         check.got("u_axis", u)));
+      if (!(std::abs(glm::length(u) - 1.0) <= kUnitEps && std::abs(glm::dot(u, shape.normal)) <= kUnitEps))
+        check.fail("u_axis", fmt::format("must be a unit vector perpendicular to the normal (got {})",
+                                         check.got("u_axis", u)));
+      break;
+    }
+    case ShapeType::Disk:
+    case ShapeType::Sphere: break;
+    case ShapeType::Mesh: {
+      const auto& vertices = shape.vertices;
+      const auto& triangles = shape.triangles;
+      if (triangles.empty()) check.fail("triangles", "a mesh needs at least one triangle");
+      if (vertices.size() > kMaxMeshVertices)
+        check.fail("vertices", fmt::format("has {} vertices; a mesh has at most {}", vertices.size(), kMaxMeshVertices));
+      for (size_t i = 0; i < vertices.size(); ++i) {
+        const glm::dvec3& p = vertices[i];
+        if (!finite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinateM)
+          check.fail(fmt::format("vertices/{}", i),
+                     fmt::format("must be finite with every coordinate's magnitude <= {:g} m (got [{}, {}, {}])",
+                                 kMaxCoordinateM, jf::fmtNum(p.x), jf::fmtNum(p.y), jf::fmtNum(p.z)));
+      }
+      for (size_t k = 0; k < triangles.size(); ++k)
+        for (uint32_t v : triangles[k])
+          if (v >= vertices.size())
+            check.fail(fmt::format("triangles/{}", k), fmt::format("refers to vertex {}, but the mesh has {} vertices",
+                                                                   v, vertices.size()));
+      if (auto k = findDegenerateTriangle(vertices, triangles))
+        check.fail(fmt::format("triangles/{}", *k),
+                   fmt::format("has zero area (vertices {}, {}, {})", triangles[*k][0], triangles[*k][1],
+                               triangles[*k][2]));
+      break;
+    }
+  }
+}
+
+// The file's own key for a dielectric's index ("glass", "sellmeier", "ior"),
+// so messages name what was written.
+std::string indexKey(const ObjectChecker& check) {
+  for (const char* key : {"material/glass", "material/sellmeier", "material/ior"})
+    if (check.c.given(check.at + "/" + key)) return key;
+  return "material";
+}
+
+void validateMaterial(const SurfaceMaterial& m, const Shape& shape, const SpectrumRange& range,
+                      const ObjectChecker& check) {
+  switch (m.type) {
+    case MaterialType::Absorber: return;
+    case MaterialType::Diffuse:
+    case MaterialType::Mirror: {
+      const std::string key = "material/reflectance";
+      const auto& nm = m.reflectanceNm;
+      const auto& r = m.reflectance;
+      if (nm.empty() || nm.size() != r.size())
+        check.fail(key, fmt::format("needs as many wavelengths as values, at least one (got {} and {})", nm.size(),
+                                    r.size()));
+      for (size_t i = 0; i < nm.size(); ++i)
+        if (!(std::isfinite(nm[i]) && nm[i] > 0.0) || (i > 0 && !(nm[i] > nm[i - 1])))
+          check.fail(key, fmt::format("wavelengths must be finite, > 0 and strictly increasing (node {} is at {} nm)",
+                                      i, jf::fmtNum(nm[i])));
+      // The node furthest outside [0, 1] (NaN first).
+      size_t worst = 0;
+      double worstBy = 0.0;
+      for (size_t i = 0; i < r.size(); ++i) {
+        const double by = std::isnan(r[i]) ? INFINITY : std::max(-r[i], r[i] - 1.0);
+        if (by > worstBy) worst = i, worstBy = by;
+      }
+      if (worstBy > 0.0) {
+        if (r.size() == 1)
+          check.fail(key, fmt::format("must be a reflectance in [0, 1] (got {})", check.got(key, r[0])));
+        check.fail(key, fmt::format("must lie in [0, 1] at every wavelength, but {} is {} at {} nm",
+                                    m.reflectanceLabel.empty() ? "the reflectance" : m.reflectanceLabel,
+                                    jf::fmtNum(r[worst]), jf::fmtNum(nm[worst])));
+      }
+      return;
+    }
+    case MaterialType::Dielectric: break;
+    default: check.fail("material/type", "is not a material type");
+  }
+  for (auto [name, coefficients] : {std::pair{"b", &m.sellmeierB}, std::pair{"c_um2", &m.sellmeierC}})
+    for (size_t i = 0; i < 3; ++i) {
+      const std::string key = fmt::format("material/sellmeier/{}/{}", name, i);
+      const double x = (*coefficients)[i];
+      if (!(std::isfinite(x) && x >= 0.0))
+        check.fail(key, fmt::format("must be a finite number >= 0 (got {})", check.got(key, x)));
+    }
+  // With B, C >= 0 every term B l^2 / (l^2 - C) falls as l grows between
+  // poles (its derivative in l^2 is -B C / (l^2 - C)^2), so without a pole
+  // inside the range n is finite there and least at max_nm: checking that
+  // end checks the whole range.
+  const std::string key = indexKey(check);
+  const std::string label = m.glassLabel.empty() ? std::string("the dielectric") : m.glassLabel;
+  for (size_t i = 0; i < 3; ++i) {
+    const double poleNm = 1000.0 * std::sqrt(m.sellmeierC[i]);
+    if (m.sellmeierB[i] != 0.0 && poleNm >= range.minNm && poleNm <= range.maxNm)
+      check.fail(key, fmt::format("the refractive index of {} has a pole at {} nm (C{} = {} um^2), inside the "
+                                  "scene's spectrum range {}-{} nm",
+                                  label, jf::fmtNum(poleNm), i + 1, jf::fmtNum(m.sellmeierC[i]),
+                                  jf::fmtNum(range.minNm), jf::fmtNum(range.maxNm)));
+  }
+  for (double nm : {range.maxNm, range.minNm}) {
+    const double n = m.refractiveIndexAt(nm);
+    if (!(std::isfinite(n) && n >= 1.0))
+      check.fail(key, fmt::format("the refractive index of {} must be finite and >= 1 over the scene's spectrum "
+                                  "range {}-{} nm, but at {} nm it is {}",
+                                  label, jf::fmtNum(range.minNm), jf::fmtNum(range.maxNm), jf::fmtNum(nm),
+                                  std::isnan(n) ? std::string("not a real number (n^2 <= 0)") : jf::fmtNum(n)));
+  }
+  if (shape.type == ShapeType::Rect || shape.type == ShapeType::Disk)
+    check.fail("material", fmt::format("a dielectric needs a closed shape: a sphere or a closed mesh (a {} has no "
+                                       "inside)",
+                                       shapeTypeName(shape.type)));
+  if (shape.type == ShapeType::Mesh)
+    if (auto fault = findEdgeFault(shape.triangles))
+      check.fail("material", fmt::format("a dielectric needs a closed shape: a sphere or a closed mesh; this mesh is "
+                                         "not closed: {}",
+                                         describeEdgeFault(*fault, 0, [](size_t k) {
+                                           return fmt::format("triangle {}", k);
+                                         })));
+}
+
+void validateObject(const SceneObject& object, size_t index, const Scene& scene, const SceneChecker& c) {
+  const ObjectChecker check{c, object.label.empty() ? "/objects/" + std::to_string(index) : object.label,
+                            object.name.empty() ? "" : fmt::format(" (object {})", jf::jsonQuoted(object.name))};
+  if (uint32_t(object.shape.type) > uint32_t(ShapeType::Mesh)) check.fail("type", "is not a shape type");
+  validateShape(object.shape, check);
+  validateMaterial(object.material, object.shape, scene.spectrum, check);
+}
+
 }  // namespace
 
 void validateSpectrum(const SpectrumRange& range, const SceneChecker& c) {
@@ -199,6 +366,19 @@ void validateScene(const Scene& scene, const SceneChecker& c) {
   }
   if (!std::isfinite(total)) c.fail("/lights", "the total power_w of all lights overflows");
   if (c.requireEmission && !(total > 0.0)) c.fail("/lights", "no light emits power: every power_w is 0");
+
+  if (scene.objects.size() > size_t(kMaxObjects))
+    c.fail("/objects", fmt::format("has {} objects; a scene has at most {}", scene.objects.size(), kMaxObjects));
+  uint64_t triangles = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    validateObject(scene.objects[i], i, scene, c);
+    triangles += scene.objects[i].shape.triangles.size();
+  }
+  if (triangles > kMaxSceneTriangles)
+    c.fail("/objects", fmt::format("the meshes have {} triangles; a scene has at most {}", triangles, kMaxSceneTriangles));
+  if (scene.render.maxBounces < 1 || scene.render.maxBounces > uint32_t(kMaxBounces))
+    c.fail("/render/max_bounces", fmt::format("must be an integer in 1..{} (got {})", kMaxBounces,
+                                              c.got("/render/max_bounces", scene.render.maxBounces)));
 }
 
 void validateScene(const Scene& scene) {

@@ -27,7 +27,8 @@ struct SceneChecker {
 };
 
 // The loader checks the range as soon as it is read: the lights' spectra are
-// built over it.
+// built over it. validateScene checks the lights, then the objects (shapes,
+// materials, and that a dielectric's shape is closed), then "render".
 void validateSpectrum(const SpectrumRange& range, const SceneChecker& c);
 void validateScene(const Scene& scene, const SceneChecker& c);
 
