@@ -1,0 +1,243 @@
+#include "compile/bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <glm/common.hpp>
+
+namespace spectrace {
+namespace {
+
+constexpr uint32_t kMaxLeaf = device::kBvhMaxLeafPrimitives;
+constexpr uint32_t kMaxDepth = device::kBvhStackSize;
+constexpr int kBins = 16;
+// pbrt-v4's cost of one traversal step relative to one primitive test.
+constexpr double kTraversalCost = 0.5;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Box {
+  glm::dvec3 lo{kInf}, hi{-kInf};
+  void extend(const glm::dvec3& lo2, const glm::dvec3& hi2) {
+    lo = glm::min(lo, lo2);
+    hi = glm::max(hi, hi2);
+  }
+  void extend(const Box& b) { extend(b.lo, b.hi); }
+  // Half the surface area; 0 for an empty or flat-to-a-line box.
+  double halfArea() const {
+    const glm::dvec3 e = glm::max(hi - lo, glm::dvec3(0.0));
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+  }
+};
+
+// The float at or below d (at or above for roundUp): the nodes' float
+// bounds must contain the double bounds. Out-of-range values are clamped
+// by hand, since converting them to float is undefined behaviour.
+float roundDown(double d) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  if (d > kMax) return kMax;
+  if (d < -double(kMax)) return -std::numeric_limits<float>::infinity();
+  float f = static_cast<float>(d);
+  if (double(f) > d) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
+float roundUp(double d) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  if (d < -double(kMax)) return -kMax;
+  if (d > kMax) return std::numeric_limits<float>::infinity();
+  float f = static_cast<float>(d);
+  if (double(f) < d) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Levels a subtree of n primitives needs when built by median splits alone:
+// what must still fit under the depth limit whatever SAH chooses.
+uint32_t levelsForMedianSplits(uint32_t n) {
+  uint32_t levels = 1;
+  for (; n > kMaxLeaf; n = (n + 1) / 2) ++levels;
+  return levels;
+}
+
+// A primitive as the builder moves it around: partitioning these in place
+// reads memory in order, where partitioning indices would jump around the
+// inputs.
+struct Item {
+  glm::dvec3 lo, hi;
+  uint32_t index;
+  glm::dvec3 centroid() const { return 0.5 * lo + 0.5 * hi; }  // lo + hi could overflow
+};
+
+class Builder {
+ public:
+  Builder(std::span<const PrimitiveBounds> bounds, BuiltBvh& out) : out_(out) {
+    items_.resize(bounds.size());
+    for (size_t i = 0; i < bounds.size(); ++i) items_[i] = Item{bounds[i].lo, bounds[i].hi, uint32_t(i)};
+  }
+
+  // Builds the tree, then reads `order` off the items' final places.
+  void buildAll() {
+    build(0, uint32_t(items_.size()), 1);
+    out_.order.resize(items_.size());
+    for (size_t k = 0; k < items_.size(); ++k) out_.order[k] = items_[k].index;
+  }
+
+ private:
+  struct Split {
+    int axis = -1;  // -1: none found
+    int bin = 0;    // the left child takes bins [0, bin]
+    uint32_t leftCount = 0;
+    double cost = kInf;  // in units of one primitive test
+  };
+
+  // Maps centroids to SAH bins along one axis. Halved coordinates keep
+  // extents of up to twice DBL_MAX finite; a reciprocal that overflows
+  // (denormal extents) gives inf or NaN, which the clamp sends to the end
+  // bins. Binning and partition call the same function, so they agree.
+  struct Binning {
+    int axis;
+    double halfLo, binsPerHalfUnit;
+    Binning(const Box& centroidBox, int a)
+        : axis(a),
+          halfLo(0.5 * centroidBox.lo[a]),
+          binsPerHalfUnit(kBins / (0.5 * centroidBox.hi[a] - 0.5 * centroidBox.lo[a])) {}
+    int operator()(const glm::dvec3& centroid) const {
+      const double t = (0.5 * centroid[axis] - halfLo) * binsPerHalfUnit;
+      return t >= double(kBins - 1) ? kBins - 1 : (t > 0.0 ? int(t) : 0);
+    }
+  };
+
+  // Builds the subtree of items [begin, end) whose root is at `level` (the
+  // tree's root: 1), appending its nodes depth first.
+  void build(uint32_t begin, uint32_t end, uint32_t level) {
+    const uint32_t nodeIndex = uint32_t(out_.nodes.size());
+    out_.nodes.emplace_back();
+    out_.depth = std::max(out_.depth, level);
+    const uint32_t n = end - begin;
+
+    Box box, centroidBox;
+    for (uint32_t k = begin; k < end; ++k) {
+      box.extend(items_[k].lo, items_[k].hi);
+      const glm::dvec3 c = items_[k].centroid();
+      centroidBox.extend(c, c);
+    }
+    device::BvhNode& node = out_.nodes[nodeIndex];
+    node.boundsMin = glm::vec3(roundDown(box.lo.x), roundDown(box.lo.y), roundDown(box.lo.z));
+    node.boundsMax = glm::vec3(roundUp(box.hi.x), roundUp(box.hi.y), roundUp(box.hi.z));
+
+    const glm::dvec3 extent = centroidBox.hi - centroidBox.lo;
+    const bool centroidsCoincide = !(extent.x > 0.0 || extent.y > 0.0 || extent.z > 0.0);
+    if (n == 1 || (n <= kMaxLeaf && (centroidsCoincide || level == kMaxDepth))) return makeLeaf(nodeIndex, begin, n);
+
+    uint32_t mid = begin + n / 2;  // coinciding centroids: split the list in the middle
+    int axis = 0;
+    if (!centroidsCoincide) {
+      axis = extent.y > extent[axis] ? 1 : axis;
+      axis = extent.z > extent[axis] ? 2 : axis;
+      const Split split = bestSahSplit(begin, end, box, centroidBox);
+      if (split.axis >= 0 && n <= kMaxLeaf && !(split.cost < double(n))) return makeLeaf(nodeIndex, begin, n);
+      // A split the depth limit allows: each child must still fit with
+      // median splits below it.
+      const uint32_t childLevels = kMaxDepth - level;
+      const auto first = items_.begin();
+      if (split.axis >= 0 &&
+          levelsForMedianSplits(std::max(split.leftCount, n - split.leftCount)) <= childLevels) {
+        axis = split.axis;
+        const Binning binOf(centroidBox, axis);
+        mid = uint32_t(std::partition(first + begin, first + end,
+                                      [&](const Item& it) { return binOf(it.centroid()) <= split.bin; }) -
+                       first);
+      } else {
+        // Median along the widest centroid extent: halves the count, so the
+        // remaining depth always suffices.
+        std::nth_element(first + begin, first + mid, first + end, [&](const Item& a, const Item& b) {
+          return a.centroid()[axis] < b.centroid()[axis];
+        });
+      }
+    }
+
+    out_.nodes[nodeIndex].countAxis = uint32_t(axis) << 16;
+    build(begin, mid, level + 1);
+    out_.nodes[nodeIndex].next = uint32_t(out_.nodes.size());
+    build(mid, end, level + 1);
+  }
+
+  // Binned SAH over every axis along which the centroids spread. No split
+  // when the node's bounds have no area (the costs would be 0/0).
+  Split bestSahSplit(uint32_t begin, uint32_t end, const Box& box, const Box& centroidBox) const {
+    Split best;
+    const double area = box.halfArea();
+    if (!(area > 0.0) || !std::isfinite(area)) return best;
+    std::array<std::array<Box, kBins>, 3> binBoxes;
+    std::array<std::array<uint32_t, kBins>, 3> binCounts{};
+    const Binning binnings[3] = {{centroidBox, 0}, {centroidBox, 1}, {centroidBox, 2}};
+    std::array<bool, 3> spread{};
+    for (int axis = 0; axis < 3; ++axis) spread[axis] = centroidBox.hi[axis] > centroidBox.lo[axis];
+    for (uint32_t k = begin; k < end; ++k) {
+      const Item& it = items_[k];
+      const glm::dvec3 c = it.centroid();
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!spread[axis]) continue;
+        const int b = binnings[axis](c);
+        binBoxes[axis][b].extend(it.lo, it.hi);
+        ++binCounts[axis][b];
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!spread[axis]) continue;
+      // Sweep from the right for the right-hand areas, then from the left.
+      std::array<double, kBins> rightArea{};
+      std::array<uint32_t, kBins> rightCount{};
+      Box right;
+      uint32_t count = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        right.extend(binBoxes[axis][b]);
+        count += binCounts[axis][b];
+        rightArea[b] = right.halfArea();
+        rightCount[b] = count;
+      }
+      Box left;
+      count = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        left.extend(binBoxes[axis][b]);
+        count += binCounts[axis][b];
+        if (count == 0 || rightCount[b + 1] == 0) continue;
+        const double cost = kTraversalCost + (count * left.halfArea() + rightCount[b + 1] * rightArea[b + 1]) / area;
+        if (cost < best.cost) best = Split{axis, b, count, cost};
+      }
+    }
+    return best;
+  }
+
+  void makeLeaf(uint32_t nodeIndex, uint32_t begin, uint32_t n) {
+    out_.nodes[nodeIndex].next = begin;
+    out_.nodes[nodeIndex].countAxis = n;
+  }
+
+  std::vector<Item> items_;
+  BuiltBvh& out_;
+};
+
+}  // namespace
+
+BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds) {
+  // Node indices are uint32 and a tree has up to 2n - 1 nodes.
+  if (bounds.size() > (size_t(1) << 31))
+    throw std::invalid_argument(fmt::format("BVH: {} primitives, more than 2^31", bounds.size()));
+  for (size_t i = 0; i < bounds.size(); ++i) {
+    const PrimitiveBounds& b = bounds[i];
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a]) || !(b.lo[a] <= b.hi[a]))
+        throw std::invalid_argument(fmt::format("BVH: primitive {} has bounds [{}, {}] on axis {}", i, b.lo[a],
+                                                b.hi[a], "xyz"[a]));
+  }
+  BuiltBvh out;
+  if (bounds.empty()) return out;
+  Builder(bounds, out).buildAll();
+  return out;
+}
+
+}  // namespace spectrace

@@ -1,0 +1,38 @@
+#pragma once
+// The BVH over the scene's primitives, built on the host in double (binned
+// SAH, pbrt-v4 style) and flattened into the kernel's BvhNode layout
+// (shaders/device_shared.h): depth first, the root at 0, float bounds rounded
+// outwards so that each node contains what it holds.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "device_shared.h"
+
+namespace spectrace {
+
+// One primitive's axis-aligned bounds, in double.
+struct PrimitiveBounds {
+  glm::dvec3 lo, hi;
+};
+
+struct BuiltBvh {
+  std::vector<device::BvhNode> nodes;  // empty for no primitives
+  // order[k]: the input index of the k-th primitive; a leaf holds
+  // order[next .. next + count).
+  std::vector<uint32_t> order;
+  // Nodes on the longest root-to-leaf path (a lone leaf: 1, no nodes: 0);
+  // never more than device::kBvhStackSize, so the kernel's traversal stack
+  // cannot overflow.
+  uint32_t depth = 0;
+};
+
+// Builds the BVH. Leaves hold at most device::kBvhMaxLeafPrimitives; where
+// SAH splits would make the tree too deep, median splits take over. Throws
+// std::invalid_argument for bounds that are not finite or have lo > hi, or
+// for more than 2^31 primitives.
+BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds);
+
+}  // namespace spectrace
