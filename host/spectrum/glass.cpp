@@ -46,7 +46,8 @@ std::vector<SellmeierGlass> parseCatalogue(std::string_view text) {
     std::vector<std::string_view> fields;
     for (size_t start = 0;;) {
       const size_t comma = line.find(',', start);
-      fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+      const size_t length = comma == std::string_view::npos ? std::string_view::npos : comma - start;
+      fields.push_back(trim(line.substr(start, length)));
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }
