@@ -27,4 +27,11 @@
 #define SPECTRACE_SQUARED_WEIGHTS (constants.weightUnits != 1u)
 #endif
 
+#ifndef SPECTRACE_OBJECTS
+#define SPECTRACE_OBJECTS (constants.objectPrimitives > 0u)
+#endif
+#ifndef SPECTRACE_RECORDING
+#define SPECTRACE_RECORDING false  // true: note each beam's counts (BeamRecord) instead of counting them
+#endif
+
 #endif  // SPECTRACE_KERNEL_FEATURES_H

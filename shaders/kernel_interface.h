@@ -7,6 +7,10 @@
 //   LightRecord readLight(uint light)
 //   SpectralInterval readInterval(uint interval)
 //   vec3 readCmf(uint node)                   the observer's CMF table
+//   Primitive readPrimitive(uint primitive)   scene objects (transport.h)
+//   BvhNode readBvhNode(uint node)
+//   Material readMaterial(uint material)
+//   float readReflectance(uint node)
 //   void addCount(uint chunk, uint counter, uint64_t amount)
 //                                             adds to one film counter
 // GLSL gets the prototypes below, so a missing function fails at the
@@ -25,6 +29,10 @@ concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
   { k.readLight(i) } -> std::same_as<LightRecord>;
   { k.readInterval(i) } -> std::same_as<SpectralInterval>;
   { k.readCmf(i) };
+  { k.readPrimitive(i) } -> std::same_as<Primitive>;
+  { k.readBvhNode(i) } -> std::same_as<BvhNode>;
+  { k.readMaterial(i) } -> std::same_as<Material>;
+  { k.readReflectance(i) } -> std::same_as<float>;
   { k.addCount(i, i, amount) };
 };
 }  // namespace spectrace::device
@@ -34,6 +42,10 @@ AliasColumn readAliasColumn(uint column);
 LightRecord readLight(uint light);
 SpectralInterval readInterval(uint interval);
 vec3 readCmf(uint node);
+Primitive readPrimitive(uint primitive);
+BvhNode readBvhNode(uint node);
+Material readMaterial(uint material);
+float readReflectance(uint node);
 void addCount(uint chunk, uint counter, uint64_t amount);
 #endif
 

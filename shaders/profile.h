@@ -37,8 +37,7 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
 
   float lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
   // As traceBeam: the bin of the full spectrum, then among the stored bins.
-  uint fullBin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.totalBins);
-  uint bin = min(max(fullBin, constants.binOffset) - constants.binOffset, constants.bins - 1u);
+  uint bin = storedBinOf(lambda);
   hash = profileMix(profileMix(hash, floatBitsToUint(lambda)), bin);
   if (stage == kProfileStageWavelength) return profileKeep(hash);
 
@@ -53,8 +52,7 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   if (stage == kProfileStageEmission) return profileKeep(hash);
 
   uvec2 cell;
-  bool hit = transportBeam(beamIndex, origin, direction, ratio) &&
-             hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
+  bool hit = hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
                        constants.pixelsY, constants.apertureDistance, constants.apertureRadiusSq, cell);
   if (stage == kProfileStageSensor) return profileKeep(profileMix(hash, hit ? cell.x ^ (cell.y << 16u) : 0u));
 

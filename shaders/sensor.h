@@ -121,4 +121,43 @@ FN bool countBeam(uvec2 cell, uint bin, float lambda, float ratio, float spareUn
   return inside;
 }
 
+// The bin among the stored bins of a wavelength: its bin of the full
+// spectrum, then its place among the stored ones (the host stores every bin
+// a light can reach, so the clamp never acts).
+FN uint storedBinOf(float lambda) {
+  uint fullBin = binOfWavelength(lambda, constants.lambdaMin, constants.binsPerNm, constants.totalBins);
+  return min(max(fullBin, constants.binOffset) - constants.binOffset, constants.bins - 1u);
+}
+
+// What one beam put on the film: how many counts (a beam makes one at the
+// camera, and with camera connections one more per diffuse vertex), and its
+// last one's pixel, bin and units (record mode).
+struct BeamTally {
+  uvec2 cell;
+  uint bin;
+  uint contributions;
+  uint64_t units;
+};
+
+FN BeamTally emptyTally() {
+  BeamTally tally;
+  tally.cell = uvec2(0u, 0u);
+  tally.bin = 0u;
+  tally.contributions = 0u;
+  tally.units = 0ul;
+  return tally;
+}
+
+// One count of a beam: added to the film, or, in record mode, only noted.
+FN void contribute(INOUT(BeamTally) tally, uvec2 cell, uint bin, float lambda, float ratio, float spareUniform) {
+  bool counted = true;
+  if (SPECTRACE_RECORDING) tally.units = weightUnitsOf(ratio, spareUniform);
+  else counted = countBeam(cell, bin, lambda, ratio, spareUniform);
+  if (counted) {
+    tally.cell = cell;
+    tally.bin = bin;
+    tally.contributions += 1u;
+  }
+}
+
 #endif  // SPECTRACE_SENSOR_H

@@ -22,6 +22,8 @@ layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no lig
 // Always set from the film (not a scene feature).
 layout(constant_id = kSpecHistogramChunks) const uint histogramChunks = kMaxHistogramChunks + 1u;
 layout(constant_id = kSpecCountBeams) const uint countBeamsOnDevice = 1u;
+// Scene objects: 0 none (transport compiled out), 1 some, 2 decided at run time.
+layout(constant_id = kSpecObjects) const uint objectsMode = 2u;
 // Bench only: the kernel cut after a stage (profile.h); the default is the whole kernel.
 layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
@@ -29,7 +31,9 @@ layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageF
 #define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
 #define SPECTRACE_AIM (aimMode != 0u)
 #define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
-#define SPECTRACE_SQUARED_WEIGHTS (aimMode != 0u && constants.weightUnits != 1u)
+#define SPECTRACE_SQUARED_WEIGHTS ((aimMode != 0u || objectsMode != 0u) && constants.weightUnits != 1u)
+#define SPECTRACE_OBJECTS (objectsMode == 2u ? constants.objectPrimitives > 0u : objectsMode == 1u)
+#define SPECTRACE_RECORDING (recordBeams != 0u)
 #define SPECTRACE_SINGLE_CHUNK (histogramChunks == 1u)
 
 // The constants, read by every beam, in a uniform buffer: lavapipe loads
@@ -75,6 +79,18 @@ layout(set = 0, binding = kBindingCmfTableUniform, scalar) uniform CmfUniformBlo
 layout(set = 0, binding = kBindingAliasColumnsUniform, scalar) uniform AliasUniformBlock {
   AliasColumn uniformAliasColumns[uniformAliasColumnCount];
 };
+layout(set = 0, binding = kBindingPrimitives, scalar) readonly buffer PrimitiveBlock {
+  Primitive primitives[];
+};
+layout(set = 0, binding = kBindingBvhNodes, scalar) readonly buffer BvhBlock {
+  BvhNode bvhNodes[];
+};
+layout(set = 0, binding = kBindingMaterials, scalar) readonly buffer MaterialBlock {
+  Material materials[];
+};
+layout(set = 0, binding = kBindingReflectance, scalar) readonly buffer ReflectanceBlock {
+  float reflectance[];
+};
 layout(set = 0, binding = kBindingTraceStats, scalar) buffer TraceStatsBlock {
   TraceStats stats;
 };
@@ -102,6 +118,10 @@ vec3 readCmf(uint i) {
   if (uniformTables != 0u) return uniformCmfTable[i];
   return cmfTable[i];
 }
+Primitive readPrimitive(uint i) { return primitives[i]; }
+BvhNode readBvhNode(uint i) { return bvhNodes[i]; }
+Material readMaterial(uint i) { return materials[i]; }
+float readReflectance(uint i) { return reflectance[i]; }
 // Constant indices only: no non-uniform descriptor indexing needed. With
 // one chunk there is no switch: on lavapipe each case of a divergent switch
 // costs a pass over the lanes.
@@ -144,14 +164,10 @@ void main() {
   if (local < push.beamCount) {
     uint64_t beamIndex = push.beamBase + uint64_t(local);
     if (recordBeams != 0u) {
-      uvec2 cell;
-      uint bin;
-      float lambda;
-      float spareUniform;
-      float ratio;
-      bool hit = traceBeam(beamIndex, cell, bin, lambda, spareUniform, ratio);
-      uint pixel = pixelOfCell(cell, constants.pixelsX);
-      beamRecords[local] = hit ? BeamRecord(pixel, bin, uint(weightUnitsOf(ratio, spareUniform)), 0u)
+      BeamTally tally = emptyTally();
+      bool hit = traceBeam(beamIndex, tally);
+      beamRecords[local] = hit ? BeamRecord(pixelOfCell(tally.cell, constants.pixelsX), tally.bin, uint(tally.units),
+                                            tally.contributions)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
     } else if (traceAndCountOrProfileBeam(beamIndex) && countBeamsOnDevice != 0u) {
       atomicAdd(groupCounted, 1u);

@@ -73,13 +73,7 @@ inline uint64_t traceBlockBody(device::BeamKernel& kernel, CountQueues& queues, 
 
 // Beams [first, first + count) recorded, not counted (traceRecorded).
 inline void recordBeamsBody(device::BeamKernel& kernel, uint64_t first, uint32_t count, device::BeamRecord* records) {
-  for (uint32_t i = 0; i < count; ++i) {
-    uint32_t pixel, bin;
-    uint64_t units = 0;
-    records[i] = kernel.trace(first + i, pixel, bin, &units)
-                     ? device::BeamRecord{pixel, bin, uint32_t(units), 0u}
-                     : device::BeamRecord{device::kBeamMissed, device::kBeamMissed, 0u, 0u};
-  }
+  for (uint32_t i = 0; i < count; ++i) records[i] = kernel.record(first + i);
 }
 
 __attribute__((flatten)) uint64_t traceBlockBaseline(device::BeamKernel& kernel, CountQueues& queues,
@@ -173,7 +167,7 @@ std::string CpuTracer::deviceName() const {
 }
 
 uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
-  const device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable, counters_);
+  const device::BeamKernel kernel = beamKernel(counters_);
   std::atomic<uint64_t> counted{0};
   // Threads take blocks of beams in order. When cancelled, each finishes
   // its block, so the traced beams stay one contiguous prefix.
@@ -208,6 +202,13 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   return std::min(beamCount, stoppedAtBlock.load() * kBlock);
 }
 
+device::BeamKernel CpuTracer::beamKernel(std::span<uint64_t> counters) const {
+  const DeviceScene& scene = plan_.device;
+  device::BeamKernel kernel(scene.constants, scene.lights, scene.intervals, scene.aliasColumns, scene.cmfTable, counters);
+  kernel.setObjects(scene.primitives, scene.bvhNodes, scene.materials, scene.reflectance);
+  return kernel;
+}
+
 void CpuTracer::clear() {
   std::fill(counters_.begin(), counters_.end(), 0);
   countedBeams_ = 0;
@@ -234,7 +235,7 @@ RenderImage CpuTracer::develop(const ResolveParameters& parameters, FilmSummary*
 }
 
 std::vector<device::BeamRecord> CpuTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
-  device::BeamKernel kernel(plan_.device.constants, plan_.device.lights, plan_.device.intervals, plan_.device.aliasColumns, plan_.device.cmfTable);
+  device::BeamKernel kernel = beamKernel({});
   std::vector<device::BeamRecord> records(count);
   recordBeams(code_, kernel, firstBeam, count, records.data());
   return records;

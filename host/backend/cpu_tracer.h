@@ -12,6 +12,7 @@
 
 #include "backend/cpu_code.h"
 #include "backend/tracer.h"
+#include "kernel/beam_kernel.h"
 #include "compile/compile_scene.h"
 
 namespace spectrace {
@@ -65,6 +66,8 @@ class CpuTracer final : public Tracer {
   std::vector<device::BeamRecord> traceRecorded(uint64_t firstBeam, uint32_t count) override;
 
  private:
+  // The shared kernel over this scene's tables, adding to `counters`.
+  device::BeamKernel beamKernel(std::span<uint64_t> counters) const;
   CompiledScene plan_;
   unsigned threads_;
   uint32_t profileStage_;

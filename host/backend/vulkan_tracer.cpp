@@ -105,7 +105,8 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
           {device::kSpecUniformLights, tables.lights},
           {device::kSpecUniformIntervals, tables.intervals},
           {device::kSpecUniformCmfNodes, tables.cmfNodes},
-          {device::kSpecUniformAliasColumns, tables.aliasColumns}};
+          {device::kSpecUniformAliasColumns, tables.aliasColumns},
+          {device::kSpecObjects, plan.device.primitives.empty() ? 0u : 1u}};
 }
 
 // Whether the trace pass counts counted beams itself: only when beams carry
@@ -168,6 +169,13 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
         tableBytes, plan.device.intervals.size(), label, plan.device.lights[largest].spectralCount,
         maxStorageBufferRange, deviceName));
   }
+  const uint64_t primitiveBytes = std::max(plan.device.primitives.size() * sizeof(device::Primitive),
+                                           plan.device.bvhNodes.size() * sizeof(device::BvhNode));
+  if (primitiveBytes > maxStorageBufferRange)
+    throw SceneError(fmt::format(
+        "/objects: the objects' {} primitives and {} BVH nodes need {} bytes in one storage buffer, more than the {} "
+        "bytes of maxStorageBufferRange of {}; use fewer triangles, or --device cpu",
+        plan.device.primitives.size(), plan.device.bvhNodes.size(), primitiveBytes, maxStorageBufferRange, deviceName));
   const uint64_t filmBytes = plan.film.storedCounterCount() * sizeof(uint64_t);
   if (deviceLocalHeapBytes > 0 && filmBytes > deviceLocalHeapBytes)
     throw SceneError(fmt::format(
@@ -224,6 +232,10 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
       cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", paddedTable(plan.device.cmfTable, uniformTables_.cmfNodes),
                                kTableUsage)),
+      primitives_(uploadedBuffer(*buffers_, context, "primitives", plan.device.primitives)),
+      bvhNodes_(uploadedBuffer(*buffers_, context, "bvh nodes", plan.device.bvhNodes)),
+      materials_(uploadedBuffer(*buffers_, context, "materials", plan.device.materials)),
+      reflectance_(uploadedBuffer(*buffers_, context, "reflectance", plan.device.reflectance)),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
@@ -250,6 +262,10 @@ VulkanTracer::~VulkanTracer() {
   buffers_->giveBack("alias columns", std::move(aliasColumns_));
   buffers_->giveBack("unused beam records", std::move(unusedBeamRecords_));
   buffers_->giveBack("cmf table", std::move(cmfTable_));
+  buffers_->giveBack("primitives", std::move(primitives_));
+  buffers_->giveBack("bvh nodes", std::move(bvhNodes_));
+  buffers_->giveBack("materials", std::move(materials_));
+  buffers_->giveBack("reflectance", std::move(reflectance_));
   buffers_->giveBack("trace stats", std::move(stats_));
   for (size_t c = 0; c < histogramChunks_.size(); ++c)
     buffers_->giveBack(fmt::format("histogram {}", c), std::move(histogramChunks_[c]));
@@ -268,6 +284,10 @@ void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Bu
   pipeline.bindBuffer(device::kBindingSpectralIntervalsUniform, 0, intervals_, 0, uniformTables_.intervalBytes());
   pipeline.bindBuffer(device::kBindingCmfTableUniform, 0, cmfTable_, 0, uniformTables_.cmfBytes());
   pipeline.bindBuffer(device::kBindingAliasColumnsUniform, 0, aliasColumns_, 0, uniformTables_.aliasColumnBytes());
+  pipeline.bindBuffer(device::kBindingPrimitives, 0, primitives_);
+  pipeline.bindBuffer(device::kBindingBvhNodes, 0, bvhNodes_);
+  pipeline.bindBuffer(device::kBindingMaterials, 0, materials_);
+  pipeline.bindBuffer(device::kBindingReflectance, 0, reflectance_);
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.

@@ -114,6 +114,11 @@ class VulkanTracer final : public Tracer {
   vk_util::Buffer aliasColumns_;
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
   vk_util::Buffer cmfTable_;
+  // Scene objects (transport.h); 16-byte stand-ins when there are none.
+  vk_util::Buffer primitives_;
+  vk_util::Buffer bvhNodes_;
+  vk_util::Buffer materials_;
+  vk_util::Buffer reflectance_;
   vk_util::Buffer stats_;  // TraceStats
   std::vector<uint64_t> histogramChunkBytes_;  // the used part of each chunk (a reused one may be larger)
   std::vector<vk_util::Buffer> histogramChunks_;

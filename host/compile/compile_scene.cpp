@@ -8,6 +8,7 @@
 
 #include "camera/camera_frame.h"
 #include "colour/colour.h"
+#include "compile/compile_objects.h"
 #include "compile/shortcuts.h"
 #include "film/pixel_window.h"
 #include "kernel/beam_kernel.h"
@@ -271,6 +272,9 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
   buildAliasColumns(compiled.device);
   cameraConstants(scene, seed, compiled.device);
+  compileObjects(scene, options.connect, compiled.device);
+  // Camera connections carry fractional weights.
+  if (compiled.device.constants.connect != 0) compiled.film.weightUnits = device::kWeightUnitsFractional;
   if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);
   if (shortcutApplies(Shortcut::TrimPixels, options.trimPixels, scene))
     compiled.film.window = reachablePixelWindow(scene.camera, reaches);

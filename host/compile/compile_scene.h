@@ -25,6 +25,12 @@ struct DeviceScene {
   std::vector<device::SpectralInterval> intervals;  // every traced light's spectral table
   std::vector<device::AliasColumn> aliasColumns;    // the light choice's, then each light's table's
   std::vector<glm::vec3> cmfTable;                  // the observer's CMF nodes, for exact colour
+  // Scene objects (empty without): primitives in the BVH's leaf order, the
+  // BVH, the materials and their reflectance tables' nodes.
+  std::vector<device::Primitive> primitives;
+  std::vector<device::BvhNode> bvhNodes;
+  std::vector<device::Material> materials;
+  std::vector<float> reflectance;
 };
 
 // What became of one scene light, for messages and the bench.
@@ -83,6 +89,10 @@ struct CompileOptions {
   // Draw beams only towards the camera, weighted so the estimate is
   // unbiased; off: analog emission.
   bool aim = true;
+  // Connect diffuse vertices to the camera (light tracing); off: the analog
+  // estimator, which counts only beams that reach the camera themselves.
+  // Not a shortcut: both are unbiased, and a test holds them to each other.
+  bool connect = true;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be

@@ -1,5 +1,10 @@
 #include "compile/shortcuts.h"
 
+#include <algorithm>
+#include <functional>
+
+#include <fmt/format.h>
+
 namespace spectrace {
 
 const char* shortcutName(Shortcut shortcut) {
@@ -13,26 +18,28 @@ const char* shortcutName(Shortcut shortcut) {
   return "?";
 }
 
-// Every precondition today is the same: a beam travels in a straight line
-// from its light to the sensor, so where it can land, and with which
-// wavelength, follows from the light alone. Scene objects (mirrors, glass,
-// diffuse surfaces) will break it; shortcutBlockedBecause must then refuse
-// or re-prove each shortcut here.
+// Without objects every precondition holds: a beam travels in a straight
+// line from its light to the sensor with the wavelength it was emitted
+// with. Objects can break them; shortcutBlockedBecause below decides, for
+// each shortcut, which objects do, and turns the shortcut off for them.
 const char* shortcutPrecondition(Shortcut shortcut) {
   switch (shortcut) {
     case Shortcut::SkipUnreachableLights:
-      return "beams travel straight from the light to the camera, so a light behind the sensor or the aperture "
-             "plane, facing away, or whose collimated beam misses, never reaches it";
+      return "beams travel straight from the light to the camera (objects, if any, are absorbers, which only take "
+             "beams away), so a light behind the sensor or the aperture plane, facing away, or whose collimated beam "
+             "misses, never reaches it";
     case Shortcut::AimAtCamera:
-      return "beams travel straight from the light to the camera, so every counted beam passes the target sphere "
-             "holding the pinhole's disk (or the bare sensor)";
+      return "beams travel straight from the light to the camera (objects, if any, are absorbers), so every "
+             "counted beam passes the target sphere holding the pinhole's disk (or the bare sensor)";
     case Shortcut::TrimSpectrum:
-      return "a beam keeps the wavelength it was emitted with, so only the bins the lights' spectra reach are hit";
+      return "a beam keeps the wavelength it was emitted with (no material shifts it), so only the bins the lights' "
+             "spectra reach are hit";
     case Shortcut::TrimPixels:
-      return "beams travel straight from the light to the camera, so they land inside the lights' image through "
-             "the pinhole (or a laser's footprint)";
+      return "beams travel straight from the light to the camera (objects, if any, are absorbers), so they land "
+             "inside the lights' image through the pinhole (or a laser's footprint)";
     case Shortcut::ColourFromBins:
-      return "a beam's wavelength is drawn independently of where it lands and keeps it, and every traced light "
+      return "a beam's wavelength is drawn independently of where it lands and keeps it (no object's effect "
+             "depends on the wavelength: no varying reflectance, no dispersive glass), and every traced light "
              "draws from one spectral table, so given its bin a counted beam's wavelength has the table's "
              "distribution inside that bin, and a bin's count times that distribution's mean CMF has the "
              "expectation of the beams' own CMF sums";
@@ -40,9 +47,49 @@ const char* shortcutPrecondition(Shortcut shortcut) {
   return "";
 }
 
-std::string shortcutBlockedBecause(Shortcut /*shortcut*/, const Scene& /*scene*/) {
-  // Nothing can stand between a light and the camera in today's scenes
-  // (Scene has lights and a camera only), so every precondition holds.
+namespace {
+
+// The first object that can send a beam somewhere a straight line from its
+// light would not go: anything but an absorber (an absorber only takes beams
+// away, so every argument about where beams can land still holds).
+std::string redirectingObject(const Scene& scene) {
+  for (const SceneObject& object : scene.objects)
+    if (object.material.type != MaterialType::Absorber)
+      return fmt::format("{} is a {} {}, which can send a beam to the camera along a path that is not a straight line "
+                         "from its light",
+                         object.label, materialTypeName(object.material.type), shapeTypeName(object.shape.type));
+  return "";
+}
+
+// The first object whose effect on a beam depends on its wavelength: a
+// reflectance that varies, or a dispersive dielectric.
+std::string wavelengthDependentObject(const Scene& scene) {
+  for (const SceneObject& object : scene.objects) {
+    const SurfaceMaterial& m = object.material;
+    bool varies = false;
+    if (m.type == MaterialType::Diffuse || m.type == MaterialType::Mirror)
+      varies = std::adjacent_find(m.reflectance.begin(), m.reflectance.end(), std::not_equal_to<>()) != m.reflectance.end();
+    if (m.type == MaterialType::Dielectric) varies = m.sellmeierC != std::array<double, 3>{0.0, 0.0, 0.0};
+    if (varies)
+      return fmt::format("{} ({} {}) treats wavelengths differently, so where a beam lands depends on its wavelength",
+                         object.label, materialTypeName(m.type), shapeTypeName(object.shape.type));
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string shortcutBlockedBecause(Shortcut shortcut, const Scene& scene) {
+  switch (shortcut) {
+    case Shortcut::SkipUnreachableLights:
+    case Shortcut::AimAtCamera:
+    case Shortcut::TrimPixels:
+      return redirectingObject(scene);
+    case Shortcut::TrimSpectrum:
+      return "";  // no material changes a beam's wavelength
+    case Shortcut::ColourFromBins:
+      return wavelengthDependentObject(scene);
+  }
   return "";
 }
 

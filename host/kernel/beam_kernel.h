@@ -62,17 +62,36 @@ class BeamKernel {
       : constants(traceConstants), lights(lightRecords), intervals(spectralIntervals), aliasColumns(aliasTables),
         cmf(cmfNodes), counters(filmCounters) {}
 
-  // Whether beam `index` is counted, its pixel and (stored) bin, and what
-  // it adds to the bin (weightUnits x its weight ratio). (The shared
-  // functions cannot be const-qualified, as GLSL has no such thing; the
-  // kernel is small, so each thread uses its own copy.)
+  // The scene's objects (none unless set; constants.objectPrimitives must
+  // match).
+  void setObjects(std::span<const Primitive> objectPrimitives, std::span<const BvhNode> nodes,
+                  std::span<const Material> objectMaterials, std::span<const float> reflectanceNodes) {
+    primitives = objectPrimitives;
+    bvhNodes = nodes;
+    materials = objectMaterials;
+    reflectance = reflectanceNodes;
+  }
+
+  // Beam `index` in record mode: whether it would be counted, and its
+  // (last) count's pixel, stored bin and units (weightUnits x its weight
+  // ratio), with the number of counts it makes. Nothing is added to the
+  // film. (The shared functions cannot be const-qualified, as GLSL has no
+  // such thing; the kernel is small, so each thread uses its own copy.)
+  BeamRecord record(uint64_t index) {
+    BeamTally tally = emptyTally();
+    recording = true;
+    const bool hit = traceBeam(index, tally);
+    recording = false;
+    if (!hit) return BeamRecord{kBeamMissed, kBeamMissed, 0u, 0u};
+    return BeamRecord{pixelOfCell(tally.cell, constants.pixelsX), tally.bin, uint32_t(tally.units), tally.contributions};
+  }
+  // The same, as pixel and bin.
   bool trace(uint64_t index, uint& pixelOut, uint& binOut, uint64_t* unitsOut = nullptr) {
-    float lambda, spare, ratio;
-    uvec2 cell;
-    const bool hit = traceBeam(index, cell, binOut, lambda, spare, ratio);
-    pixelOut = pixelOfCell(cell, constants.pixelsX);
-    if (unitsOut) *unitsOut = hit ? weightUnitsOf(ratio, spare) : 0;
-    return hit;
+    const BeamRecord r = record(index);
+    pixelOut = r.pixel;
+    binOut = r.bin;
+    if (unitsOut) *unitsOut = r.units;
+    return r.pixel != kBeamMissed;
   }
 
   // The includer contract (kernel_interface.h).
@@ -84,6 +103,10 @@ class BeamKernel {
   LightRecord readLight(uint i) const { return lights[i]; }
   SpectralInterval readInterval(uint i) const { return intervals[i]; }
   vec3 readCmf(uint i) const { return cmf[i]; }
+  Primitive readPrimitive(uint i) const { return primitives[i]; }
+  BvhNode readBvhNode(uint i) const { return bvhNodes[i]; }
+  Material readMaterial(uint i) const { return materials[i]; }
+  float readReflectance(uint i) const { return reflectance[i]; }
   // One chunk on the CPU: `chunk` is always 0. Queued when the caller gave
   // a PendingCounts (it must flush it), else added at once.
   void addCount(uint /*chunk*/, uint index, uint64_t amount) const {
@@ -99,10 +122,16 @@ class BeamKernel {
   std::span<const AliasColumn> aliasColumns;
   std::span<const glm::vec3> cmf;
   std::span<uint64_t> counters;
+  std::span<const Primitive> primitives;
+  std::span<const BvhNode> bvhNodes;
+  std::span<const Material> materials;
+  std::span<const float> reflectance;
+  bool recording = false;  // record mode: counts are noted, not added
 
  public:
   // The shared functions are public so tests can probe them one by one.
 #define SPECTRACE_SINGLE_CHUNK true  // `counters` holds every stored pixel
+#define SPECTRACE_RECORDING recording
 #include "trace.h"
 #include "profile.h"  // the bench's cost profile
 };

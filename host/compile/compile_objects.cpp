@@ -1,0 +1,180 @@
+#include "compile/compile_objects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "camera/camera_frame.h"
+#include "compile/bvh.h"
+#include "lights/light_shared.h"
+
+namespace spectrace {
+namespace {
+
+// A float primitive and the double box that holds every point the kernel
+// can find on it.
+struct PlacedPrimitive {
+  device::Primitive primitive{};
+  PrimitiveBounds bounds{};
+};
+
+glm::dvec3 toDouble(const glm::vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+// Widens a box by a little more than the float rounding of the points the
+// kernel computes on it (a few ulps of its coordinates and of its size), so
+// the BVH never prunes a surface the primitive test would find.
+PrimitiveBounds padded(glm::dvec3 lo, glm::dvec3 hi) {
+  const double size = glm::length(hi - lo);
+  for (int i = 0; i < 3; ++i) {
+    const double magnitude = std::max(std::abs(lo[i]), std::abs(hi[i]));
+    const double pad = 1e-6 * (magnitude + size) + 1e-30;
+    lo[i] -= pad;
+    hi[i] += pad;
+  }
+  return {lo, hi};
+}
+
+PrimitiveBounds boundsOfPoints(std::initializer_list<glm::dvec3> points) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& p : points) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return padded(lo, hi);
+}
+
+PlacedPrimitive placeTriangle(const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2, uint32_t material) {
+  PlacedPrimitive placed;
+  device::Primitive& p = placed.primitive;
+  p.type = device::kPrimitiveTriangle;
+  p.material = material;
+  p.a = toFloat(v0);
+  p.b = toFloat(v1 - v0);
+  p.c = toFloat(v2 - v0);
+  const glm::dvec3 a = toDouble(p.a);
+  placed.bounds = boundsOfPoints({a, a + toDouble(p.b), a + toDouble(p.c)});
+  return placed;
+}
+
+void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material, std::vector<PlacedPrimitive>& out) {
+  const glm::dvec3 centre = frame.pointToLocal(shape.center);
+  PlacedPrimitive placed;
+  device::Primitive& p = placed.primitive;
+  p.material = material;
+  switch (shape.type) {
+    case ShapeType::Rect: {
+      const glm::dvec3 n = glm::normalize(frame.directionToLocal(shape.normal));
+      glm::dvec3 u = frame.directionToLocal(shape.uAxis);
+      u = glm::normalize(u - n * glm::dot(u, n));
+      const glm::dvec3 v = glm::cross(n, u);  // u x v = n
+      p.type = device::kPrimitiveRect;
+      p.a = toFloat(centre);
+      p.b = toFloat(u * (0.5 * shape.sizeM.x));
+      p.c = toFloat(v * (0.5 * shape.sizeM.y));
+      const glm::dvec3 a = toDouble(p.a), b = toDouble(p.b), c = toDouble(p.c);
+      placed.bounds = boundsOfPoints({a + b + c, a + b - c, a - b + c, a - b - c});
+      out.push_back(placed);
+      return;
+    }
+    case ShapeType::Disk: {
+      const glm::dvec3 n = glm::normalize(frame.directionToLocal(shape.normal));
+      p.type = device::kPrimitiveDisk;
+      p.a = toFloat(centre);
+      p.b = toFloat(n);
+      p.c = glm::vec3(float(shape.radiusM * shape.radiusM), 0.0f, 0.0f);
+      // A disk of radius r with unit normal n reaches r * sqrt(1 - n_i^2)
+      // along axis i.
+      const glm::dvec3 reach = shape.radiusM * glm::sqrt(glm::max(glm::dvec3(1.0) - n * n, glm::dvec3(0.0)));
+      placed.bounds = padded(toDouble(p.a) - reach, toDouble(p.a) + reach);
+      out.push_back(placed);
+      return;
+    }
+    case ShapeType::Sphere: {
+      p.type = device::kPrimitiveSphere;
+      p.a = toFloat(centre);
+      p.b = glm::vec3(float(shape.radiusM), float(shape.radiusM * shape.radiusM), 0.0f);
+      placed.bounds = padded(toDouble(p.a) - shape.radiusM, toDouble(p.a) + shape.radiusM);
+      out.push_back(placed);
+      return;
+    }
+    case ShapeType::Mesh:
+      for (const auto& t : shape.triangles)
+        out.push_back(placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[1]]),
+                                    frame.pointToLocal(shape.vertices[t[2]]), material));
+      return;
+  }
+}
+
+device::Material deviceMaterial(const SurfaceMaterial& material, std::vector<float>& reflectance) {
+  device::Material m{};
+  m.type = uint32_t(material.type);
+  m.reflectanceFirst = uint32_t(reflectance.size());
+  m.reflectanceCount = 1;
+  if (material.type == MaterialType::Diffuse || material.type == MaterialType::Mirror) {
+    const ReflectanceTable table = reflectanceTable(material);
+    m.reflectanceCount = uint32_t(table.values.size());
+    m.reflectanceLambda0 = table.lambda0;
+    m.reflectanceNodesPerNm = table.nodesPerNm;
+    reflectance.insert(reflectance.end(), table.values.begin(), table.values.end());
+  } else {
+    reflectance.push_back(0.0f);
+  }
+  m.sellmeierB = glm::vec3(float(material.sellmeierB[0]), float(material.sellmeierB[1]), float(material.sellmeierB[2]));
+  m.sellmeierC = glm::vec3(float(material.sellmeierC[0]), float(material.sellmeierC[1]), float(material.sellmeierC[2]));
+  return m;
+}
+
+}  // namespace
+
+ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
+  ReflectanceTable table;
+  const std::vector<double>& nm = material.reflectanceNm;
+  if (nm.size() < 2) {
+    table.lambda0 = nm.empty() ? 0.0f : float(nm.front());
+    table.nodesPerNm = 1.0f;
+    table.values.push_back(float(material.reflectance.empty() ? 0.0 : material.reflectance.front()));
+    return table;
+  }
+  // The grid step: the smallest node spacing (evenly spaced data lands on
+  // the grid exactly), at most 1 nm, and coarse enough for 100k nodes.
+  constexpr double kMaxNodes = 100000;
+  double step = 1.0;
+  for (size_t i = 1; i < nm.size(); ++i) step = std::min(step, nm[i] - nm[i - 1]);
+  const double span = nm.back() - nm.front();
+  step = std::max(step, span / (kMaxNodes - 1));
+  const size_t count = size_t(std::ceil(span / step - 1e-9)) + 1;
+  step = span / double(count - 1);
+  table.lambda0 = float(nm.front());
+  table.nodesPerNm = float(1.0 / step);
+  for (size_t i = 0; i < count; ++i) table.values.push_back(float(material.reflectanceAt(nm.front() + double(i) * step)));
+  return table;
+}
+
+void compileObjects(const Scene& scene, bool connect, DeviceScene& device) {
+  device::TraceConstants& c = device.constants;
+  c.maxBounces = scene.render.maxBounces;
+  c.cameraDepth = scene.camera.pinhole ? float(scene.camera.pinhole->distanceM) : 0.0f;
+  if (scene.objects.empty()) return;
+  const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
+  std::vector<PlacedPrimitive> placed;
+  bool anyDiffuse = false;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    device.materials.push_back(deviceMaterial(object.material, device.reflectance));
+    anyDiffuse = anyDiffuse || object.material.type == MaterialType::Diffuse;
+    placeShape(object.shape, frame, uint32_t(i), placed);
+  }
+  std::vector<PrimitiveBounds> bounds;
+  bounds.reserve(placed.size());
+  for (const PlacedPrimitive& p : placed) bounds.push_back(p.bounds);
+  BuiltBvh bvh = buildBvh(bounds);
+  device.bvhNodes = std::move(bvh.nodes);
+  device.primitives.reserve(placed.size());
+  for (uint32_t index : bvh.order) device.primitives.push_back(placed[index].primitive);
+  c.objectPrimitives = uint32_t(device.primitives.size());
+  c.connect = connect && anyDiffuse ? 1u : 0u;
+}
+
+}  // namespace spectrace

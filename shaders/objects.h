@@ -1,0 +1,197 @@
+// Scene objects in the shared kernel: ray against primitive, the BVH walk
+// with a fixed stack, the camera's body, and the offset that keeps a
+// scattered beam off the surface it leaves. Float only, with PRECISE, so the
+// CPU reference and the shader find the same surface at the same point.
+#ifndef SPECTRACE_OBJECTS_H
+#define SPECTRACE_OBJECTS_H
+
+// The closest surface a ray meets.
+struct ObjectHit {
+  float t;         // distance along the (unit) direction
+  uint primitive;  // index into the primitives
+};
+
+// Möller-Trumbore. Returns the distance, or a negative number for a miss.
+FN float intersectTriangle(vec3 origin, vec3 direction, Primitive p) {
+  PRECISE vec3 pvec = cross3(direction, p.c);
+  PRECISE float det = dot3(p.b, pvec);
+  float miss = -1.0f;
+  if (det == 0.0f) return miss;
+  PRECISE float inverse = 1.0f / det;
+  PRECISE vec3 tvec = origin - p.a;
+  PRECISE float u = dot3(tvec, pvec) * inverse;
+  if (!(u >= 0.0f && u <= 1.0f)) return miss;
+  PRECISE vec3 qvec = cross3(tvec, p.b);
+  PRECISE float v = dot3(direction, qvec) * inverse;
+  if (!(v >= 0.0f && u + v <= 1.0f)) return miss;
+  PRECISE float t = dot3(p.c, qvec) * inverse;
+  return t;
+}
+
+// A plane through `centre` with normal `n` (any length): the distance and
+// the point, or a negative distance when parallel or behind.
+FN float intersectPlane(vec3 origin, vec3 direction, vec3 centre, vec3 n, OUT(vec3) point) {
+  PRECISE float denominator = dot3(direction, n);
+  PRECISE float t = denominator != 0.0f ? dot3(centre - origin, n) / denominator : -1.0f;
+  PRECISE vec3 q = origin + direction * t;
+  point = q;
+  return t;
+}
+
+FN float intersectRect(vec3 origin, vec3 direction, Primitive p) {
+  vec3 point;
+  float t = intersectPlane(origin, direction, p.a, cross3(p.b, p.c), point);
+  PRECISE vec3 q = point - p.a;
+  PRECISE float s = dot3(q, p.b) / dot3(p.b, p.b);
+  PRECISE float r = dot3(q, p.c) / dot3(p.c, p.c);
+  return abs(s) <= 1.0f && abs(r) <= 1.0f ? t : -1.0f;
+}
+
+FN float intersectDisk(vec3 origin, vec3 direction, Primitive p) {
+  vec3 point;
+  float t = intersectPlane(origin, direction, p.a, p.b, point);
+  PRECISE vec3 q = point - p.a;
+  return dot3(q, q) <= p.c.x ? t : -1.0f;
+}
+
+// The nearer positive root, from the discriminant in the form of Ray
+// Tracing Gems ch. 7 (r^2 - |oc - (oc.d) d|^2), which keeps its precision
+// for rays from far away; the roots as q and c / q avoid cancellation.
+FN float intersectSphere(vec3 origin, vec3 direction, Primitive p) {
+  PRECISE vec3 oc = origin - p.a;
+  PRECISE float b = dot3(oc, direction);
+  PRECISE vec3 f = oc - direction * b;
+  PRECISE float discriminant = p.b.y - dot3(f, f);
+  if (!(discriminant >= 0.0f)) return -1.0f;
+  PRECISE float c = dot3(oc, oc) - p.b.y;
+  PRECISE float q = b > 0.0f ? -(b + sqrt(discriminant)) : -(b - sqrt(discriminant));
+  PRECISE float t0 = q;
+  PRECISE float t1 = q != 0.0f ? c / q : 0.0f;
+  float nearRoot = min(t0, t1);
+  float farRoot = max(t0, t1);
+  return nearRoot > 0.0f ? nearRoot : farRoot;
+}
+
+FN float intersectPrimitive(vec3 origin, vec3 direction, Primitive p) {
+  float t = -1.0f;
+  if (p.type == kPrimitiveTriangle) t = intersectTriangle(origin, direction, p);
+  else if (p.type == kPrimitiveRect) t = intersectRect(origin, direction, p);
+  else if (p.type == kPrimitiveDisk) t = intersectDisk(origin, direction, p);
+  else t = intersectSphere(origin, direction, p);
+  return t;
+}
+
+// The unit geometric normal at `point`: outwards for spheres and closed
+// meshes (counter-clockwise from outside), along the given normal for
+// rects and disks.
+FN vec3 primitiveNormal(Primitive p, vec3 point) {
+  PRECISE vec3 n = p.b;
+  if (p.type == kPrimitiveTriangle || p.type == kPrimitiveRect) n = cross3(p.b, p.c);
+  else if (p.type == kPrimitiveSphere) n = point - p.a;
+  PRECISE vec3 unit = n * (1.0f / sqrt(dot3(n, n)));
+  return unit;
+}
+
+// 1 / direction with zero components replaced by a huge finite value, so
+// the slab test never forms 0 * inf (NaN).
+FN vec3 inverseDirection(vec3 direction) {
+  PRECISE vec3 inverse = vec3(direction.x != 0.0f ? 1.0f / direction.x : 3.0e38f,
+                              direction.y != 0.0f ? 1.0f / direction.y : 3.0e38f,
+                              direction.z != 0.0f ? 1.0f / direction.z : 3.0e38f);
+  return inverse;
+}
+
+// Whether the ray meets the box before tMax. The far distance is widened by
+// a few ulps (pbrt-v4's 1 + 2 gamma(3)), so rounding never drops a box the
+// ray grazes; pruning more boxes than needed changes no result.
+FN bool rayMeetsBox(vec3 origin, vec3 inverse, vec3 lo, vec3 hi, float tMax) {
+  PRECISE vec3 t0 = (lo - origin) * inverse;
+  PRECISE vec3 t1 = (hi - origin) * inverse;
+  vec3 nearT = min(t0, t1);
+  vec3 farT = max(t0, t1);
+  float enter = max(max(nearT.x, nearT.y), max(nearT.z, 0.0f));
+  PRECISE float leave = min(min(farT.x, farT.y), min(farT.z, tMax)) * 1.0000004f;
+  return enter <= leave;
+}
+
+// The closest primitive the ray meets at a distance in (0, tMax), through
+// the BVH (device_shared.h: BvhNode) with a fixed stack, nearer child first.
+// With anyHit, returns at the first one (visibility tests).
+FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, OUT(ObjectHit) hit) {
+  hit.t = tMax;
+  hit.primitive = 0u;
+  bool found = false;
+  vec3 inverse = inverseDirection(direction);
+  uint stack[kBvhStackSize];
+  uint depth = 0u;
+  uint node = 0u;
+  while (true) {
+    BvhNode current = readBvhNode(node);
+    bool descend = rayMeetsBox(origin, inverse, current.boundsMin, current.boundsMax, hit.t);
+    uint count = current.countAxis & 0xFFFFu;
+    if (descend && count > 0u) {
+      for (uint i = 0u; i < count; ++i) {
+        float t = intersectPrimitive(origin, direction, readPrimitive(current.next + i));
+        if (t > 0.0f && t < hit.t) {
+          hit.t = t;
+          hit.primitive = current.next + i;
+          found = true;
+        }
+      }
+      if (found && anyHit) break;
+    } else if (descend) {
+      uint axis = (current.countAxis >> 16u) & 3u;
+      bool negative = axis == 0u ? direction.x < 0.0f : (axis == 1u ? direction.y < 0.0f : direction.z < 0.0f);
+      stack[depth] = negative ? node + 1u : current.next;
+      depth += 1u;
+      node = negative ? current.next : node + 1u;
+      continue;
+    }
+    if (depth == 0u) break;
+    depth -= 1u;
+    node = stack[depth];
+  }
+  return found;
+}
+
+// Wächter and Binder, "A Fast and Robust Method for Avoiding
+// Self-Intersection" (Ray Tracing Gems, ch. 6): the point moved off the
+// surface along n by a fixed number of ulps (a fixed distance near the
+// origin, where ulps vanish), so a ray from it cannot meet the surface it
+// leaves through rounding.
+FN vec3 offsetOffSurface(vec3 point, vec3 n) {
+  ivec3 ulps = ivec3(int(256.0f * n.x), int(256.0f * n.y), int(256.0f * n.z));
+  vec3 moved = vec3(intBitsToFloat(floatBitsToInt(point.x) + (point.x < 0.0f ? -ulps.x : ulps.x)),
+                    intBitsToFloat(floatBitsToInt(point.y) + (point.y < 0.0f ? -ulps.y : ulps.y)),
+                    intBitsToFloat(floatBitsToInt(point.z) + (point.z < 0.0f ? -ulps.z : ulps.z)));
+  PRECISE vec3 nudged = point + n * (1.0f / 65536.0f);
+  return vec3(abs(point.x) < 1.0f / 32.0f ? nudged.x : moved.x, abs(point.y) < 1.0f / 32.0f ? nudged.y : moved.y,
+              abs(point.z) < 1.0f / 32.0f ? nudged.z : moved.z);
+}
+
+// The camera's body, in the camera frame: the box |x| <= half width,
+// |y| <= half height, 0 <= z <= depth (the aperture plane; 0 for a bare
+// sensor, a flat plate). A beam that enters it through the aperture and
+// lands on the sensor is counted; any other beam that meets it is absorbed.
+// Returns the distance to the body (negative: the ray misses it), and
+// whether the beam is counted, at `cell`.
+FN float intersectCamera(vec3 origin, vec3 direction, OUT(bool) counted, OUT(uvec2) cell) {
+  counted = hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
+                      constants.pixelsY, constants.apertureDistance, constants.apertureRadiusSq, cell);
+  if (counted) {
+    PRECISE float toFront = (origin.z - constants.apertureDistance) / -direction.z;
+    return toFront;
+  }
+  vec3 inverse = inverseDirection(direction);
+  vec3 lo = vec3(-constants.sensorHalfSize.x, -constants.sensorHalfSize.y, 0.0f);
+  vec3 hi = vec3(constants.sensorHalfSize.x, constants.sensorHalfSize.y, constants.cameraDepth);
+  PRECISE vec3 t0 = (lo - origin) * inverse;
+  PRECISE vec3 t1 = (hi - origin) * inverse;
+  vec3 nearT = min(t0, t1);
+  vec3 farT = max(t0, t1);
+  float enter = max(max(nearT.x, nearT.y), max(nearT.z, 0.0f));
+  float leave = min(min(farT.x, farT.y), farT.z);
+  return enter <= leave ? enter : -1.0f;
+}
+
+#endif  // SPECTRACE_OBJECTS_H
