@@ -126,6 +126,7 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
     options.plan.trimPixels = !command.fullSensor;
     options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     options.plan.aim = !command.noAim;
+    options.plan.connect = !command.noConnect;
     options.plan.colourFromBins = !command.perBeamColour;
     if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     checkBeamRange(command.firstBeam, job.beamCount());

@@ -33,6 +33,7 @@ struct RenderCommand {
   bool general = false;        // the general trace pipeline, not one specialised to the scene
   bool perBeamColour = false;  // per-beam colour counters even where colour from bins applies
   bool noAim = false;          // analog emission: beams in every direction the lights emit
+  bool noConnect = false;      // analog transport: no camera connections at diffuse surfaces
   // The exact render state (film/film_state.h), rewritten at checkpoints
   // and at the end; one scene only.
   std::optional<std::filesystem::path> state;

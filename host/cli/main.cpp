@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
                       "Use the general trace pipeline instead of one specialised to the scene");
   renderCmd->add_flag("--no-aim", render.noAim,
                       "Analog emission (the reference): do not aim beams at the pinhole or sensor");
+  renderCmd->add_flag("--no-connect", render.noConnect,
+                      "Analog transport (the reference): count only beams that reach the camera themselves, without "
+                      "connecting diffuse surfaces to the camera");
   renderCmd->add_flag("--per-beam-colour", render.perBeamColour,
                       "Sum each counted beam's own CMF values per pixel (the reference), even where colour from the "
                       "bins is exact in expectation (one spectral table)");
