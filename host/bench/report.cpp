@@ -154,6 +154,49 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
 
 }  // namespace
 
+namespace {
+
+// Scenes with objects: rates, figures of merit, and the same-run ratios the
+// optics issue asks for (connection : analog, BVH : brute force, GPU : CPU).
+void writeOpticsSection(std::ostream& md, const std::vector<OpticsRow>& rows) {
+  md << "## Optics: scenes with objects\n\n";
+  md << "Beams through objects (shaders/transport.h). relMSE comes from two renders with seeds 1 and 2: "
+        "sum (A - B)^2 / 2 over sum R^2, where R is the mean of the scene's connected (or only) renders; FOM = "
+        "1 / (relMSE x trace seconds), trace seconds the lesser of the two. Analog transport (`--no-connect`) is "
+        "given ten times the beams.\n\n";
+  md << "| scene | variant | device | primitives | beams | counted | trace s | Mbeam/s | relMSE | FOM |\n";
+  md << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (const OpticsRow& r : rows)
+    md << fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} | {:.2f} | {:.3g} | {:.4g} |\n", r.scene, r.variant,
+                      r.deviceName, r.primitives, r.beams, r.counted, r.traceSeconds, r.beamsPerSecond() * 1e-6,
+                      r.relMse, r.fom);
+  md << "\nRatios, same run:\n\n";
+  auto find = [&](const std::string& scene, const std::string& variant, const std::string& device) -> const OpticsRow* {
+    for (const OpticsRow& r : rows)
+      if (r.scene == scene && r.variant == variant && r.deviceName == device) return &r;
+    return nullptr;
+  };
+  for (const OpticsRow& r : rows) {
+    if (r.variant == "connect")
+      if (const OpticsRow* analog = find(r.scene, "analog", r.deviceName))
+        md << fmt::format("- {} on {}: FOM camera connection : analog = **{:.3g}**\n", r.scene, r.deviceName,
+                          r.fom / analog->fom);
+    if (r.variant == "bvh")
+      if (const OpticsRow* brute = find(r.scene, "brute force", r.deviceName))
+        md << fmt::format("- {} on {}: beams/s BVH : brute force = **{:.3g}** (the same images)\n", r.scene,
+                          r.deviceName, r.beamsPerSecond() / brute->beamsPerSecond());
+  }
+  for (const OpticsRow& gpu : rows)
+    for (const OpticsRow& cpu : rows)
+      if (gpu.device == DeviceKind::Vulkan && cpu.device == DeviceKind::Cpu && gpu.scene == cpu.scene &&
+          gpu.variant == cpu.variant)
+        md << fmt::format("- {} ({}): beams/s {} : {} = {:.2f}\n", gpu.scene, gpu.variant, gpu.deviceName,
+                          cpu.deviceName, gpu.beamsPerSecond() / cpu.beamsPerSecond());
+  md << "\n";
+}
+
+}  // namespace
+
 void writeBenchReport(const std::filesystem::path& dir, const BenchReport& report) {
   const auto data = dir / "bench";
   std::filesystem::create_directories(data);
@@ -284,6 +327,7 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
     md << "\n";
   }
 
+  if (!report.optics.empty()) writeOpticsSection(md, report.optics);
   if (!report.aim.empty()) {
     md << "## Beams aimed at the camera\n\n";
     md << "Aimed sampling draws each light's beams only towards the pinhole (or the bare sensor) and weights "

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/error_bench.h"
+#include "bench/optics_bench.h"
 
 namespace spectrace {
 
@@ -128,6 +129,7 @@ struct BenchReport {
   std::vector<CeilingRow> ceiling;
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
+  std::vector<OpticsRow> optics;
 };
 
 // Writes DIR/benchmarks.md and DIR/bench/{*.csv,*.png}. Plots need gnuplot;

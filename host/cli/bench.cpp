@@ -502,6 +502,21 @@ std::vector<AimRow> runAimStudy(const std::vector<DeviceSpec>& devices, const st
   return rows;
 }
 
+std::vector<OpticsRow> runOptics(const std::vector<DeviceSpec>& devices, const std::filesystem::path& scenesDir,
+                                 const std::atomic<bool>& cancel) {
+  fmt::print("\nOptics: scenes with objects (relMSE from two seeds)\n");
+  fmt::print("{:<18} {:<12} {:<6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10}\n", "scene", "variant", "device", "primitives",
+             "beams", "trace s", "Mbeam/s", "relMSE", "FOM");
+  OpticsBenchOptions options;
+  options.scenesDir = scenesDir;
+  options.cancel = &cancel;
+  options.onRow = [](const OpticsRow& r) {
+    fmt::print("{:<18} {:<12} {:<6} {:>10} {:>10} {:>9.3f} {:>9.2f} {:>10.3g} {:>10.4g}\n", r.scene, r.variant,
+               deviceKindName(r.device), r.primitives, r.beams, r.traceSeconds, r.beamsPerSecond() * 1e-6, r.relMse, r.fom);
+  };
+  return runOpticsBench(devices, options);
+}
+
 std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
   // A fixed list, so the benchmark's rows are comparable between runs.
   std::vector<std::string> scenes;
@@ -518,14 +533,14 @@ void selectBenchSections(BenchCommand& command, const std::string& list) {
   const std::vector<std::pair<std::string, bool*>> sections = {
       {"throughput", &command.throughput}, {"specialisation", &command.specialisation}, {"aim", &command.aim},
       {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour},
-      {"profile", &command.profile},       {"ceiling", &command.ceiling}};
+      {"profile", &command.profile},       {"ceiling", &command.ceiling},           {"optics", &command.optics}};
   for (const auto& [name, flag] : sections) *flag = false;
   std::stringstream items(list);
   for (std::string item; std::getline(items, item, ',');) {
     const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == item; });
     if (it == sections.end())
       throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour, "
-                                   "profile, ceiling)",
+                                   "profile, ceiling, optics)",
                                    list, item));
     *it->second = true;
   }
@@ -549,6 +564,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.trim = runTrim(report.devices, dir.parent_path(), cancel);
   }
   if (command.aim) report.aim = runAimStudy(report.devices, dir);
+  if (command.optics) report.optics = runOptics(report.devices, dir.parent_path(), cancel);
   if (command.batch) {
     const auto lampScene = dir.parent_path() / "batch" / "lamp.json";
     report.batchProcesses = runBatchProcesses(report.devices, lampScene, cancel);

@@ -85,7 +85,7 @@ struct BenchCommand {
   std::filesystem::path scenesDir;      // reference scenes (default scenes/reference)
   double minDecade = 3, maxDecade = 8;  // error sweep: 10^min .. 10^max beams in x10 steps
   uint64_t colourBeams = 50'000'000;    // per render of the colour-from-binning study
-  bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true;
+  bool throughput = true, sweep = true, colour = true, specialisation = true, aim = true, optics = true;
   bool batch = true;          // batch section: one batch against many processes, overhead of large jobs
   bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
   bool profile = true;        // the kernel's cost by stage (shaders/profile.h)

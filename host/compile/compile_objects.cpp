@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -126,6 +127,28 @@ device::Material deviceMaterial(const SurfaceMaterial& material, std::vector<flo
   return m;
 }
 
+// Every primitive in one leaf under a root that bounds them all: the
+// kernel then tests each one (the bench's brute force).
+BuiltBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds) {
+  if (bounds.size() > 0xFFFFu) throw std::invalid_argument("brute force: at most 65535 primitives fit one leaf");
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  BuiltBvh bvh;
+  for (uint32_t i = 0; i < bounds.size(); ++i) {
+    lo = glm::min(lo, bounds[i].lo);
+    hi = glm::max(hi, bounds[i].hi);
+    bvh.order.push_back(i);
+  }
+  const PrimitiveBounds all = padded(lo, hi);
+  device::BvhNode root{};
+  root.boundsMin = glm::vec3(all.lo) - glm::vec3(1e-6f);
+  root.boundsMax = glm::vec3(all.hi) + glm::vec3(1e-6f);
+  root.next = 0;
+  root.countAxis = uint32_t(bounds.size());
+  bvh.nodes.push_back(root);
+  bvh.depth = 1;
+  return bvh;
+}
+
 }  // namespace
 
 ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
@@ -152,7 +175,7 @@ ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
   return table;
 }
 
-void compileObjects(const Scene& scene, bool connect, DeviceScene& device) {
+void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device) {
   device::TraceConstants& c = device.constants;
   c.maxBounces = scene.render.maxBounces;
   c.cameraDepth = scene.camera.pinhole ? float(scene.camera.pinhole->distanceM) : 0.0f;
@@ -169,12 +192,12 @@ void compileObjects(const Scene& scene, bool connect, DeviceScene& device) {
   std::vector<PrimitiveBounds> bounds;
   bounds.reserve(placed.size());
   for (const PlacedPrimitive& p : placed) bounds.push_back(p.bounds);
-  BuiltBvh bvh = buildBvh(bounds);
+  BuiltBvh bvh = options.bruteForceObjects ? oneLeaf(bounds) : buildBvh(bounds);
   device.bvhNodes = std::move(bvh.nodes);
   device.primitives.reserve(placed.size());
   for (uint32_t index : bvh.order) device.primitives.push_back(placed[index].primitive);
   c.objectPrimitives = uint32_t(device.primitives.size());
-  c.connect = connect && anyDiffuse ? 1u : 0u;
+  c.connect = options.connect && anyDiffuse ? 1u : 0u;
 }
 
 }  // namespace spectrace

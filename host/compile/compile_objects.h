@@ -12,9 +12,10 @@ namespace spectrace {
 
 // Fills device.primitives (in the BVH's order), bvhNodes, materials and
 // reflectance, and the object constants (objectPrimitives, maxBounces,
-// connect, cameraDepth). `connect`: camera connections at diffuse vertices
-// (kept only when some object is diffuse).
-void compileObjects(const Scene& scene, bool connect, DeviceScene& device);
+// connect, cameraDepth). options.connect: camera connections at diffuse
+// vertices (kept only when some object is diffuse); options.bruteForceObjects:
+// one leaf instead of the BVH.
+void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device);
 
 // The reflectance table the kernel interpolates (Material's fields): nodes
 // on a uniform grid over the given nodes, fine enough that the grid holds

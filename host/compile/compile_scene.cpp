@@ -272,7 +272,7 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
   buildAliasColumns(compiled.device);
   cameraConstants(scene, seed, compiled.device);
-  compileObjects(scene, options.connect, compiled.device);
+  compileObjects(scene, options, compiled.device);
   // Camera connections carry fractional weights.
   if (compiled.device.constants.connect != 0) compiled.film.weightUnits = device::kWeightUnitsFractional;
   if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);

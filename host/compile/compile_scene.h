@@ -93,6 +93,9 @@ struct CompileOptions {
   // estimator, which counts only beams that reach the camera themselves.
   // Not a shortcut: both are unbiased, and a test holds them to each other.
   bool connect = true;
+  // Bench only: every object primitive in one BVH leaf, so each ray tests
+  // them all (brute force through the same kernel code).
+  bool bruteForceObjects = false;
 };
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be

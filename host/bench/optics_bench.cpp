@@ -1,0 +1,183 @@
+#include "bench/optics_bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "render/renderer.h"
+
+namespace spectrace {
+namespace {
+
+// Two renders of one variant, seeds 1 and 2, after a small one that keeps
+// pipeline compilation out of the timing.
+struct RenderPair {
+  RenderResult a, b;
+  double traceSeconds() const { return std::min(a.traceWallSeconds, b.traceWallSeconds); }
+};
+
+RenderPair renderPair(const Scene& scene, const Device& device, uint64_t beams, const OpticsBenchOptions& bench,
+                      const std::function<void(RenderOptions&)>& configure) {
+  RenderOptions options;
+  options.beams = beams;
+  options.cancel = bench.cancel;
+  options.checkpointSeconds = 0;
+  if (configure) configure(options);
+  RenderOptions warm = options;
+  warm.beams = std::min<uint64_t>(beams, 1 << 14);
+  render(scene, warm, device);
+  RenderPair pair;
+  options.seed = 1;
+  pair.a = render(scene, options, device);
+  options.seed = 2;
+  pair.b = render(scene, options, device);
+  return pair;
+}
+
+std::vector<double> meanImage(const RenderPair& pair) {
+  std::vector<double> mean(pair.a.image.irradiance.size());
+  for (size_t i = 0; i < mean.size(); ++i)
+    mean[i] = 0.5 * (double(pair.a.image.irradiance[i]) + double(pair.b.image.irradiance[i]));
+  return mean;
+}
+
+// relMSE from the seeds' difference against the reference (see the header).
+double relativeMse(const RenderPair& pair, const std::vector<double>& reference) {
+  double squaredError = 0.0, squaredSignal = 0.0;
+  for (size_t i = 0; i < reference.size(); ++i) {
+    const double d = double(pair.a.image.irradiance[i]) - double(pair.b.image.irradiance[i]);
+    squaredError += 0.5 * d * d;
+    squaredSignal += reference[i] * reference[i];
+  }
+  return squaredError / squaredSignal;
+}
+
+OpticsRow rowOf(const std::string& scene, const std::string& variant, const RenderPair& pair,
+                const std::vector<double>& reference) {
+  OpticsRow row;
+  row.scene = scene;
+  row.variant = variant;
+  row.device = pair.a.deviceKind;
+  row.deviceName = pair.a.deviceName;
+  row.primitives = pair.a.plan.device.primitives.size();
+  row.beams = pair.a.beamsTraced;
+  row.counted = pair.a.summary.countedBeams;
+  row.traceSeconds = pair.traceSeconds();
+  row.relMse = relativeMse(pair, reference);
+  row.fom = row.relMse > 0.0 ? 1.0 / (row.relMse * row.traceSeconds) : 0.0;
+  return row;
+}
+
+// A grey sphere under a point light, through a pinhole: the mesh scene.
+Scene meshScene(uint64_t triangles) {
+  Scene scene;
+  scene.camera.position = {0.0, 0.0, 0.0};
+  scene.camera.lookAt = {0.0, 0.0, 1.0};
+  scene.camera.up = {0.0, 1.0, 0.0};
+  scene.camera.sensorWidthM = 0.024;
+  scene.camera.sensorHeightM = 0.024;
+  scene.camera.pixelsX = 256;
+  scene.camera.pixelsY = 256;
+  scene.camera.pinhole = Pinhole{0.04, 0.001};
+  Light light;
+  light.type = LightType::Point;
+  light.label = "/lights/0";
+  light.position = {0.6, 0.6, 0.4};
+  light.powerW = 10.0;
+  light.spd = makeLineSpd(550.0);
+  light.spdLabel = "550 nm";
+  scene.lights.push_back(light);
+  SceneObject sphere;
+  sphere.label = "/objects/0";
+  sphere.shape = tessellatedSphere({0.0, 0.0, 1.0}, 0.3, triangles);
+  sphere.material.type = MaterialType::Diffuse;
+  sphere.material.reflectanceNm = {550.0};
+  sphere.material.reflectance = {0.5};
+  scene.objects.push_back(sphere);
+  scene.render.beams = 1'000'000;
+  return scene;
+}
+
+}  // namespace
+
+Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triangles) {
+  // Rings x segments quads, the polar ones as single triangles: about
+  // 2 x rings x segments triangles, with segments = 2 x rings.
+  const uint32_t rings = std::max<uint32_t>(3, uint32_t(std::lround(std::sqrt(double(triangles) / 4.0))));
+  const uint32_t segments = 2 * rings;
+  Shape shape;
+  shape.type = ShapeType::Mesh;
+  shape.closed = true;
+  shape.vertices.push_back(centre + glm::dvec3(0.0, 0.0, radius));  // north pole
+  for (uint32_t r = 1; r < rings; ++r) {
+    const double theta = std::numbers::pi * double(r) / double(rings);
+    for (uint32_t s = 0; s < segments; ++s) {
+      const double phi = 2.0 * std::numbers::pi * double(s) / double(segments);
+      shape.vertices.push_back(centre + radius * glm::dvec3(std::sin(theta) * std::cos(phi),
+                                                            std::sin(theta) * std::sin(phi), std::cos(theta)));
+    }
+  }
+  const uint32_t south = uint32_t(shape.vertices.size());
+  shape.vertices.push_back(centre - glm::dvec3(0.0, 0.0, radius));
+  auto ringVertex = [&](uint32_t r, uint32_t s) { return 1 + (r - 1) * segments + s % segments; };
+  // Counter-clockwise seen from outside.
+  for (uint32_t s = 0; s < segments; ++s) shape.triangles.push_back({0, ringVertex(1, s), ringVertex(1, s + 1)});
+  for (uint32_t r = 1; r + 1 < rings; ++r)
+    for (uint32_t s = 0; s < segments; ++s) {
+      shape.triangles.push_back({ringVertex(r, s), ringVertex(r + 1, s), ringVertex(r + 1, s + 1)});
+      shape.triangles.push_back({ringVertex(r, s), ringVertex(r + 1, s + 1), ringVertex(r, s + 1)});
+    }
+  for (uint32_t s = 0; s < segments; ++s)
+    shape.triangles.push_back({ringVertex(rings - 1, s), south, ringVertex(rings - 1, s + 1)});
+  return shape;
+}
+
+std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& bench) {
+  std::vector<OpticsRow> rows;
+  auto add = [&](OpticsRow row) {
+    if (bench.onRow) bench.onRow(row);
+    rows.push_back(std::move(row));
+  };
+  const Scene prism = loadScene(bench.scenesDir / "prism.json");
+  const Scene colorChecker = loadScene(bench.scenesDir / "colorchecker.json");
+  const Scene mesh = meshScene(1'000'000);
+  const Scene smallMesh = meshScene(1'000);
+  for (const DeviceSpec& spec : devices) {
+    const auto device = Device::open(spec);
+    {
+      const RenderPair pair = renderPair(prism, *device, 4'000'000, bench, {});
+      add(rowOf("prism", "default", pair, meanImage(pair)));
+    }
+    {
+      // Connection against analog: one reference (the connected renders'
+      // mean) for both, analog at ten times the beams.
+      const RenderPair connected = renderPair(colorChecker, *device, 2'000'000, bench, {});
+      const RenderPair analog =
+          renderPair(colorChecker, *device, 20'000'000, bench, [](RenderOptions& o) { o.plan.connect = false; });
+      const std::vector<double> reference = meanImage(connected);
+      add(rowOf("colorchecker", "connect", connected, reference));
+      add(rowOf("colorchecker", "analog", analog, reference));
+    }
+    {
+      const RenderPair pair = renderPair(mesh, *device, 2'000'000, bench, {});
+      add(rowOf("mesh 1M triangles", "default", pair, meanImage(pair)));
+    }
+    {
+      // The same beams either way: brute force finds the same closest
+      // surfaces, so the images are the same and only the time differs.
+      const RenderPair bvh = renderPair(smallMesh, *device, 2'000'000, bench, {});
+      const RenderPair brute =
+          renderPair(smallMesh, *device, 2'000'000, bench, [](RenderOptions& o) { o.plan.bruteForceObjects = true; });
+      const std::vector<double> reference = meanImage(bvh);
+      add(rowOf("mesh 1k triangles", "bvh", bvh, reference));
+      add(rowOf("mesh 1k triangles", "brute force", brute, reference));
+      if (bvh.a.image.irradiance != brute.a.image.irradiance)
+        throw std::runtime_error("bench: the BVH and brute force gave different images of the same beams");
+    }
+  }
+  return rows;
+}
+
+}  // namespace spectrace

@@ -1,0 +1,48 @@
+#pragma once
+// The bench's "Optics" section: scenes with objects (the prism, the
+// ColorChecker, a mesh of a million triangles), the camera connection
+// against analog transport, and the BVH against brute force.
+//
+// Their error has no closed form, so it is measured from two renders with
+// different seeds, A and B: for an unbiased estimator E[(A - B)^2] is twice
+// one render's variance, so
+//   relMSE = sum over pixels (A - B)^2 / 2  /  sum over pixels R^2,
+// with R a reference image of the same scene (one denominator for every
+// variant of a scene, so FOM ratios are ratios of squared error x time).
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "backend/device.h"
+#include "scene/scene.h"
+
+namespace spectrace {
+
+struct OpticsRow {
+  std::string scene;    // "prism", "colorchecker", "mesh 1M"
+  std::string variant;  // "connect", "analog", "bvh", "brute force"
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
+  uint64_t primitives = 0;
+  uint64_t beams = 0, counted = 0;
+  double traceSeconds = 0.0;  // the trace loop's wall time, least of the two renders
+  double relMse = 0.0;
+  double fom = 0.0;           // 1 / (relMSE x traceSeconds)
+  double beamsPerSecond() const { return double(beams) / traceSeconds; }
+};
+
+// A sphere of about `triangles` triangles (a latitude-longitude mesh),
+// closed, faces outwards.
+Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triangles);
+
+struct OpticsBenchOptions {
+  std::filesystem::path scenesDir;  // holds prism.json and colorchecker.json
+  const std::atomic<bool>* cancel = nullptr;
+  std::function<void(const OpticsRow&)> onRow;
+};
+std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& options);
+
+}  // namespace spectrace
