@@ -160,11 +160,16 @@ ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
     table.values.push_back(float(material.reflectance.empty() ? 0.0 : material.reflectance.front()));
     return table;
   }
-  // The grid step: the smallest node spacing (evenly spaced data lands on
-  // the grid exactly), at most 1 nm, and coarse enough for 100k nodes.
+  // The grid step: evenly spaced nodes (tabulated data usually are) are the
+  // grid, exactly; otherwise 1 nm or the smallest spacing if finer, which
+  // holds every node to within that step. At most 100k nodes either way.
   constexpr double kMaxNodes = 100000;
-  double step = 1.0;
-  for (size_t i = 1; i < nm.size(); ++i) step = std::min(step, nm[i] - nm[i - 1]);
+  double smallest = nm[1] - nm[0], largest = smallest;
+  for (size_t i = 1; i < nm.size(); ++i) {
+    smallest = std::min(smallest, nm[i] - nm[i - 1]);
+    largest = std::max(largest, nm[i] - nm[i - 1]);
+  }
+  double step = largest - smallest <= 1e-9 * largest ? smallest : std::min(1.0, smallest);
   const double span = nm.back() - nm.front();
   step = std::max(step, span / (kMaxNodes - 1));
   const size_t count = size_t(std::ceil(span / step - 1e-9)) + 1;
