@@ -120,6 +120,10 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
   std::vector<std::filesystem::path> all = inputs;
   all.push_back(job.scene.sourcePath);
   for (const Light& light : job.scene.lights) all.push_back(light.spdFile);  // the scene's CSV spectra
+  for (const SceneObject& object : job.scene.objects) {  // its OBJ meshes and reflectance CSVs
+    all.push_back(object.shape.meshFile);
+    all.push_back(object.material.reflectanceFile);
+  }
   checkOutputPath(job.output, all);
 }
 
