@@ -654,20 +654,13 @@ void expectFurnace(double rho, uint32_t bounces, bool connect, uint64_t beams, c
 // D = 8 stops the beams.
 TEST_P(OpticsReference, WhiteFurnaceAnalog) { expectFurnace(1.0, 8, false, 4'000'000, device(), name()); }
 
-// KNOWN BUG (CPU reference, host/kernel/beam_kernel.h PendingCounts with
-// host/backend/cpu_tracer.cpp traceBlockBody): the Cpu instances of the two
-// connected furnaces crash (SIGSEGV). The queue of pending film adds holds
-// 256 entries and is swapped when fewer than 5 are left after a beam, room
-// for the one count (bin, X, Y, Z, squared weight) a beam made before
-// camera connections; here a beam makes up to D counts (2 adds each), so
-// the queue overruns its arrays into CountQueues::filling, which then
-// indexes far outside groups[2]. The Gpu instances pass.
+// Connected, a beam makes up to D counts: this once overran the CPU
+// reference's queue of pending film adds (now flushed when full).
 TEST_P(OpticsReference, WhiteFurnaceConnected) { expectFurnace(1.0, 8, true, 1'600'000, device(), name()); }
 
 // rho = 0.5 with D = 40 (rho^40 ~ 1e-12: the depth limit is all but never
 // reached, yet the sum runs to D exactly).
 TEST_P(OpticsReference, GreyFurnaceAnalog) { expectFurnace(0.5, 40, false, 8'000'000, device(), name()); }
-// KNOWN BUG on the CPU reference: see WhiteFurnaceConnected.
 TEST_P(OpticsReference, GreyFurnaceConnected) { expectFurnace(0.5, 40, true, 1'600'000, device(), name()); }
 
 // --- 6. closed meshes face outwards, and a glass slab transmits ------------------
@@ -679,14 +672,9 @@ TEST_P(OpticsReference, GreyFurnaceConnected) { expectFurnace(0.5, 40, true, 1'6
 // reflection of the world (right = forward x up), so the winding seen from
 // outside reverses there unless the compiler turns the triangles round.
 //
-// KNOWN BUG (host/compile/compile_objects.cpp, placeShape's Mesh case /
-// placeTriangle): the triangles are mapped into the camera frame corner by
-// corner, in the file's order, so in the kernel every closed mesh's normal
-// points inwards (all 8 faces of this octahedron; a sphere's is outward).
-// transport.h then takes a beam entering a dielectric mesh for one leaving
-// it (eta = n instead of 1 / n). Reversing the winding when the frame is a
-// reflection (it always is: det = -1) would fix it. The test below shows
-// the physics; both fail until then.
+// The compiler turns the triangles round (compile_objects.cpp); without
+// that, every closed mesh's normal pointed inwards and a beam entering glass
+// was refracted as if leaving it.
 TEST(OpticsReferenceMesh, KernelNormalsOfAClosedMeshPointOutwards) {
   Scene scene = testing::bareSensorScene(0.02, 0.02, 4, 4, 4);
   scene.lights = {testing::pointLight({0.0, 0.0, 0.05}, 1.0, makeLineSpd(550.0))};
@@ -720,11 +708,8 @@ TEST(OpticsReferenceMesh, KernelNormalsOfAClosedMeshPointOutwards) {
 // sensor, R^6 ~ 1e-8). The reflected beams go up and away. Plain counts,
 // one per beam at most: binomial.
 //
-// KNOWN BUG: fails while mesh normals point inwards in the kernel (see
-// above): entering with eta = 1.5, every beam meets total internal
-// reflection at 45 degrees (sin^2 = 1.125) and none is transmitted. With
-// the box's triangles turned round by hand, the same test measures 0.90406
-// against 0.90433 (-0.6 sigma).
+// With inward normals every beam met total internal reflection on entry
+// (sin^2 = 1.125) and none was transmitted.
 TEST_P(OpticsReference, GlassSlabMeshTransmitsTheFresnelShare) {
   constexpr double kN = 1.5, kPower = 1.0;
   Scene scene = testing::bareSensorScene(0.06, 0.06, 6, 6, 4);

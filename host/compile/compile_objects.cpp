@@ -101,9 +101,12 @@ void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material,
       return;
     }
     case ShapeType::Mesh:
+      // The camera frame (right = forward x up, up, forward) is a mirror
+      // image of the world, so a triangle's corners are taken in the other
+      // order there: counter-clockwise from outside stays outwards.
       for (const auto& t : shape.triangles)
-        out.push_back(placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[1]]),
-                                    frame.pointToLocal(shape.vertices[t[2]]), material));
+        out.push_back(placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[2]]),
+                                    frame.pointToLocal(shape.vertices[t[1]]), material));
       return;
   }
 }

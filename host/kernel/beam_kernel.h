@@ -29,7 +29,11 @@ class PendingCounts {
 
   explicit PendingCounts(std::span<uint64_t> filmCounters) : counters_(filmCounters) {}
   bool full() const { return size_ + 5 > kCapacity; }
+  // A beam with camera connections can make many counts: a full group is
+  // added at once rather than overrun (its lines may not have arrived yet,
+  // which costs time, never a count).
   void push(uint32_t index, uint64_t amount) {
+    if (size_ == kCapacity) [[unlikely]] flush();
     __builtin_prefetch(&counters_[index], 1);
     index_[size_] = index;
     amount_[size_] = amount;
