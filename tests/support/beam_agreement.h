@@ -19,16 +19,11 @@ struct BeamAgreement {
 };
 
 inline bool sameRecord(const device::BeamRecord& a, const device::BeamRecord& b) {
-  return a.pixel == b.pixel && a.bin == b.bin && a.units == b.units;
+  return a.pixel == b.pixel && a.bin == b.bin && a.units == b.units && a.contributions == b.contributions;
 }
 
 // The CPU's record of beam `index`, as the shader's record mode writes it.
-inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) {
-  uint32_t pixel = 0, bin = 0;
-  uint64_t units = 0;
-  if (!kernel.trace(index, pixel, bin, &units)) return {device::kBeamMissed, device::kBeamMissed, 0u, 0u};
-  return {pixel, bin, uint32_t(units), 0u};
-}
+inline device::BeamRecord cpuRecord(device::BeamKernel& kernel, uint64_t index) { return kernel.record(index); }
 
 // Traces beams [firstBeam, firstBeam + count) on both devices, prints the
 // first few differences and the totals, and records the agreement rate as a
@@ -37,6 +32,7 @@ inline BeamAgreement beamByBeam(const CompiledScene& plan, uint64_t firstBeam, u
   VulkanTracer gpu(sharedVulkan(), plan);
   const auto records = gpu.traceRecorded(firstBeam, count);
   device::BeamKernel cpu(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns);
+  cpu.setObjects(plan.device.primitives, plan.device.bvhNodes, plan.device.materials, plan.device.reflectance);
   BeamAgreement result;
   for (uint32_t i = 0; i < count; ++i) {
     const device::BeamRecord expected = cpuRecord(cpu, firstBeam + i);
