@@ -10,9 +10,8 @@
 #include "spectrum/spd.h"
 
 namespace spectrace {
-namespace {
 
-std::string_view trim(std::string_view s) {
+std::string_view trimWhitespace(std::string_view s) {
   const char* ws = " \t\r\v\f";
   const size_t b = s.find_first_not_of(ws);
   if (b == std::string_view::npos) return {};
@@ -20,12 +19,14 @@ std::string_view trim(std::string_view s) {
   return s.substr(b, e - b + 1);
 }
 
+namespace {
+
 std::vector<std::string_view> splitFields(std::string_view line) {
   std::vector<std::string_view> out;
   size_t start = 0;
   while (true) {
     const size_t comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    out.push_back(trimWhitespace(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -75,7 +76,7 @@ CsvTable parseCsvTable(std::string_view text, const std::string& source) {
     pos = nl + 1;
     ++lineNo;
     if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    line = trim(line);
+    line = trimWhitespace(line);
     if (line.empty()) continue;
     const auto where = [&] { return fmt::format("{}:{}: ", source, lineNo); };
     const std::vector<std::string_view> fields = splitFields(line);

@@ -25,6 +25,9 @@ struct CsvTable {
 // Throws SpdError whose message starts with "<source>:<line>: ".
 CsvTable parseCsvTable(std::string_view text, const std::string& source);
 
+// `s` without leading and trailing whitespace (the CSV readers' field rule).
+std::string_view trimWhitespace(std::string_view s);
+
 // Index of the named value column; throws SpdError
 // ("column 'X' not found in <source>; columns are: ...") otherwise.
 size_t csvColumnIndex(const CsvTable& table, std::string_view column);

@@ -9,17 +9,10 @@
 #include <fmt/format.h>
 
 #include "embedded_glass.h"
+#include "spectrum/cie_data.h"
 
 namespace spectrace {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  const char* ws = " \t\r\v\f";
-  const size_t b = s.find_first_not_of(ws);
-  if (b == std::string_view::npos) return {};
-  const size_t e = s.find_last_not_of(ws);
-  return s.substr(b, e - b + 1);
-}
 
 // Parses "name,b1,b2,b3,c1_um2,c2_um2,c3_um2" rows after one header line.
 // The table is compiled in, so a malformed row is a build mistake: it throws
@@ -37,7 +30,7 @@ std::vector<SellmeierGlass> parseCatalogue(std::string_view text) {
     pos = nl + 1;
     ++lineNo;
     if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    line = trim(line);
+    line = trimWhitespace(line);
     if (line.empty()) continue;
     if (!sawHeader) {
       sawHeader = true;
@@ -47,7 +40,7 @@ std::vector<SellmeierGlass> parseCatalogue(std::string_view text) {
     for (size_t start = 0;;) {
       const size_t comma = line.find(',', start);
       const size_t length = comma == std::string_view::npos ? std::string_view::npos : comma - start;
-      fields.push_back(trim(line.substr(start, length)));
+      fields.push_back(trimWhitespace(line.substr(start, length)));
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }
