@@ -10,260 +10,260 @@ set title 'point_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_0 << EOD
-0.000873246 2.48151
-0.00105898 0.814132
-0.00273939 0.250412
-0.0193007 0.0737579
-0.190728 0.0242166
-1.85321 0.00768919
+0.000637746 2.48151
+0.000822921 0.814132
+0.00200506 0.250412
+0.0144217 0.0737579
+0.138083 0.0242166
+1.35666 0.00768919
 EOD
 $d1_0 << EOD
-0.00035017 2.48151
-0.000920846 0.814132
-0.00621755 0.250412
-0.0339517 0.0737579
-0.310783 0.0242166
-2.85182 0.00768918
+0.000196582 2.48151
+0.000618508 0.814132
+0.00499 0.250412
+0.0286959 0.0737579
+0.255335 0.0242166
+2.52108 0.00768918
 EOD
-plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00768919*(x/1.85321)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_0 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_0 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00768919*(x/1.35666)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'point_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_1 << EOD
-0.00163051 3.13913
-0.00138514 1.24226
-0.00422863 0.386499
-0.0306609 0.127715
-0.184145 0.039639
-1.81903 0.0126134
+0.000631908 3.13913
+0.000719047 1.24226
+0.00183307 0.386499
+0.0135962 0.127715
+0.131136 0.039639
+1.30812 0.0126134
 EOD
 $d1_1 << EOD
-0.000286716 3.13913
-0.00078879 1.24226
-0.00366764 0.386499
-0.0277116 0.127715
-0.271969 0.039639
-2.44645 0.0126134
+0.000251853 3.13913
+0.000665718 1.24226
+0.00335597 0.386499
+0.0257191 0.127715
+0.243822 0.039639
+2.44396 0.0126134
 EOD
-plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0126134*(x/1.81903)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_1 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_1 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0126134*(x/1.30812)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_on_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_2 << EOD
-0.00104344 1.43653
-0.00130465 0.481258
-0.00343493 0.160017
-0.0230917 0.0486866
-0.236595 0.0149436
-2.36056 0.00500333
+0.00220798 1.43653
+0.000846156 0.481258
+0.00223285 0.160017
+0.0173895 0.0486866
+0.165889 0.0149436
+1.67347 0.00500333
 EOD
 $d1_2 << EOD
-0.000214768 1.43653
-0.00082235 0.481258
-0.00500081 0.160017
-0.0426254 0.0486866
-0.413365 0.0149436
-4.14305 0.00500333
+0.000225915 1.43653
+0.00086919 0.481258
+0.00514869 0.160017
+0.0403534 0.0486866
+0.386605 0.0149436
+3.88616 0.00500333
 EOD
-plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00500333*(x/2.36056)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_2 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_2 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00500333*(x/1.67347)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'disk_off_axis' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_3 << EOD
-0.00104588 2.09389
-0.00155076 0.610668
-0.0042874 0.184784
-0.0245887 0.0576963
-0.232344 0.0187082
-2.34432 0.00605956
+0.000517388 2.09389
+0.000690084 0.610668
+0.00217418 0.184784
+0.0168383 0.0576963
+0.171819 0.0187082
+1.77899 0.00605956
 EOD
 $d1_3 << EOD
-0.000180518 2.09389
-0.00077437 0.610668
-0.00490576 0.184784
-0.0475868 0.0576963
-0.477839 0.0187082
-3.93662 0.00605956
+0.000193267 2.09389
+0.000813477 0.610668
+0.00487087 0.184784
+0.0385997 0.0576963
+0.369828 0.0187082
+3.70124 0.00605956
 EOD
-plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00605956*(x/2.34432)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_3 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_3 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00605956*(x/1.77899)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'furnace' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_4 << EOD
-0.000717544 2.15149
-0.000894557 0.705714
-0.00441284 0.223067
-0.0194906 0.0688873
-0.211616 0.0237385
-1.77018 0.0066814
+0.000293055 2.15149
+0.000455837 0.705714
+0.00161833 0.223067
+0.0134364 0.0688873
+0.130393 0.0237385
+1.29997 0.0066814
 EOD
 $d1_4 << EOD
-0.000157554 2.15149
-0.00363647 0.705714
-0.00591672 0.223067
-0.0375789 0.0688873
-0.308436 0.0237385
-3.00693 0.0066814
+0.000120669 2.15149
+0.000631287 0.705714
+0.00401785 0.223067
+0.0317468 0.0688873
+0.304389 0.0237385
+3.0481 0.0066814
 EOD
-plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0066814*(x/1.77018)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_4 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_4 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.0066814*(x/1.29997)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_d65' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_5 << EOD
-0.00218461 0.594722
-0.00244551 0.203314
-0.00444711 0.0611355
-0.0256153 0.0189767
-0.232411 0.00615257
-2.18559 0.00196103
+0.00161339 0.594722
+0.00166809 0.203314
+0.0031182 0.0611355
+0.0184037 0.0189767
+0.169927 0.00615257
+1.69826 0.00196103
 EOD
 $d1_5 << EOD
-0.000111876 0.594722
-0.000581913 0.203314
-0.00403385 0.0611355
-0.0317938 0.0189767
-0.319676 0.00615257
-3.69582 0.00196104
+0.000116392 0.594722
+0.000636685 0.203314
+0.00413277 0.0611355
+0.0345516 0.0189767
+0.339497 0.00615257
+3.23343 0.00196104
 EOD
-plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.18559)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_5 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_5 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/1.69826)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_a' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_6 << EOD
-0.00223535 0.594722
-0.0023464 0.203314
-0.00505392 0.0611355
-0.0266715 0.0189767
-0.234704 0.00615257
-2.14739 0.00196103
+0.00183189 0.594722
+0.0019644 0.203314
+0.00446646 0.0611355
+0.0187315 0.0189767
+0.169172 0.00615257
+1.68055 0.00196103
 EOD
 $d1_6 << EOD
-0.000180568 0.594722
-0.000932254 0.203314
-0.00553914 0.0611355
-0.0372723 0.0189767
-0.382904 0.00615257
-3.88684 0.00196104
+0.000117504 0.594722
+0.000630786 0.203314
+0.00410657 0.0611355
+0.0332511 0.0189767
+0.318915 0.00615257
+3.18767 0.00196104
 EOD
-plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.14739)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_6 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_6 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/1.68055)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f2' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_7 << EOD
-0.0020537 0.594722
-0.0022879 0.203314
-0.00462329 0.0611355
-0.0278363 0.0189767
-0.264332 0.00615257
-2.56678 0.00196103
+0.00165719 0.594722
+0.00162952 0.203314
+0.0030905 0.0611355
+0.0184475 0.0189767
+0.170551 0.00615257
+1.69098 0.00196103
 EOD
 $d1_7 << EOD
-0.000166187 0.594722
-0.00086314 0.203314
-0.00580127 0.0611355
-0.036987 0.0189767
-0.370195 0.00615257
-3.79216 0.00196103
+0.000113789 0.594722
+0.000623084 0.203314
+0.00404534 0.0611355
+0.0334475 0.0189767
+0.337147 0.00615257
+3.52925 0.00196103
 EOD
-plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.56678)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_7 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_7 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/1.69098)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_f11' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_8 << EOD
-0.0017286 0.594722
-0.00180814 0.203314
-0.0040841 0.0611355
-0.0274143 0.0189767
-0.256687 0.00615257
-2.608 0.00196103
+0.00170838 0.594722
+0.00176445 0.203314
+0.00310654 0.0611355
+0.0183089 0.0189767
+0.170734 0.00615257
+1.69245 0.00196103
 EOD
 $d1_8 << EOD
-0.000166908 0.594722
-0.000877572 0.203314
-0.00698817 0.0611355
-0.038906 0.0189767
-0.37439 0.00615257
-3.69385 0.00196103
+0.000143373 0.594722
+0.000688061 0.203314
+0.00525161 0.0611355
+0.0402846 0.0189767
+0.396931 0.00615257
+3.2858 0.00196103
 EOD
-plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.608)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_8 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_8 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/1.69245)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'uniform_led_b3' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_9 << EOD
-0.0018628 0.594722
-0.00209564 0.203314
-0.00454278 0.0611355
-0.0278896 0.0189767
-0.259971 0.00615257
-2.26607 0.00196103
+0.00167356 0.594722
+0.00169921 0.203314
+0.00408754 0.0611355
+0.0189288 0.0189767
+0.179556 0.00615257
+1.72115 0.00196103
 EOD
 $d1_9 << EOD
-0.000178335 0.594722
-0.000881879 0.203314
-0.00572631 0.0611355
-0.0367389 0.0189767
-0.383368 0.00615257
-3.24149 0.00196103
+0.000124385 0.594722
+0.000626439 0.203314
+0.00411359 0.0611355
+0.0334472 0.0189767
+0.323276 0.00615257
+3.30579 0.00196103
 EOD
-plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/2.26607)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_9 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_9 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00196103*(x/1.72115)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'laser_532' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_10 << EOD
-0.000831084 0.73791
-0.00117116 0.23595
-0.0028118 0.0767803
-0.0223863 0.023128
-0.24439 0.00729035
-2.15361 0.00237266
+0.000467414 0.73791
+0.000591718 0.23595
+0.00183482 0.0767803
+0.0152603 0.023128
+0.151329 0.00729035
+1.52807 0.00237266
 EOD
 $d1_10 << EOD
-0.000102251 0.73791
-0.000566841 0.23595
-0.00406876 0.0767803
-0.0366191 0.023128
-0.348307 0.00729035
-3.42675 0.00237266
+0.000123343 0.73791
+0.000584047 0.23595
+0.00412344 0.0767803
+0.0355437 0.023128
+0.346937 0.00729035
+3.47528 0.00237266
 EOD
-plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00237266*(x/2.15361)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_10 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_10 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00237266*(x/1.52807)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_rect' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_11 << EOD
-0.00341088 0.661868
-0.00408032 0.230997
-0.00765573 0.0636716
-0.0415411 0.020916
-0.378916 0.00644784
-3.71866 0.00203705
+0.00191808 0.661868
+0.00204371 0.230997
+0.00452567 0.0636716
+0.027075 0.020916
+0.251575 0.00644784
+2.497 0.00203705
 EOD
 $d1_11 << EOD
-0.000274698 0.661868
-0.00100223 0.230997
-0.0066705 0.0636716
-0.060547 0.020916
-0.601606 0.00644784
-6.11476 0.00203705
+0.000215981 0.661868
+0.000906976 0.230997
+0.00557053 0.0636716
+0.0446434 0.020916
+0.443559 0.00644784
+4.29405 0.00203705
 EOD
-plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00203705*(x/3.71866)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_11 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_11 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00203705*(x/2.497)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 set title 'pinhole_small' noenhanced
 set xlabel 'seconds'
 set ylabel 'relative RMSE'
 $d0_12 << EOD
-0.00319276 0.831923
-0.00338352 0.268993
-0.00633973 0.0822313
-0.0372283 0.025986
-0.353113 0.00857101
-3.50285 0.00284146
+0.00194104 0.831923
+0.00218164 0.268993
+0.00449289 0.0822313
+0.0300775 0.025986
+0.250949 0.00857101
+2.47037 0.00284146
 EOD
 $d1_12 << EOD
-0.000171505 0.831923
-0.000859475 0.268993
-0.00633691 0.0822313
-0.0560647 0.025986
-0.549425 0.00857101
-5.32181 0.00284147
+0.000151114 0.831923
+0.000818975 0.268993
+0.00527821 0.0822313
+0.0421669 0.025986
+0.406294 0.00857101
+4.06234 0.00284147
 EOD
-plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00284146*(x/3.50285)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
+plot $d0_12 with linespoints lw 2 title 'llvmpipe (LLVM 15.0.6, 256 bits)' noenhanced, $d1_12 with linespoints lw 2 title 'CPU reference, 2 threads, x86-64-v3' noenhanced, 0.00284146*(x/2.47037)**-0.5 with lines dt 2 lc 'gray' title 'N^{-1/2}'
 unset multiplot
