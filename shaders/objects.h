@@ -92,6 +92,17 @@ FN vec3 primitiveNormal(Primitive p, vec3 point) {
   return unit;
 }
 
+// The hit point put back onto the primitive's surface. A point found as
+// origin + t * direction carries rounding that grows with |origin| and t,
+// which the offset below (a few ulps of the point itself) need not cover;
+// projected onto the surface, its error is a few ulps of the primitive's
+// own coordinates.
+FN vec3 pointOnSurface(Primitive p, vec3 point, vec3 n) {
+  PRECISE vec3 onPlane = point - n * dot3(point - p.a, n);
+  PRECISE vec3 onSphere = p.a + n * p.b.x;
+  return p.type == kPrimitiveSphere ? onSphere : onPlane;
+}
+
 // 1 / direction with zero components replaced by a huge finite value, so
 // the slab test never forms 0 * inf (NaN).
 FN vec3 inverseDirection(vec3 direction) {
@@ -103,7 +114,7 @@ FN vec3 inverseDirection(vec3 direction) {
 
 // Whether the ray meets the box before tMax. The far distance is widened by
 // a few ulps (pbrt-v4's 1 + 2 gamma(3)), so rounding never drops a box the
-// ray grazes; pruning more boxes than needed changes no result.
+// ray grazes; visiting more boxes than needed changes no result.
 FN bool rayMeetsBox(vec3 origin, vec3 inverse, vec3 lo, vec3 hi, float tMax) {
   PRECISE vec3 t0 = (lo - origin) * inverse;
   PRECISE vec3 t1 = (hi - origin) * inverse;

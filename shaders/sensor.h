@@ -64,7 +64,9 @@ FN vec3 cmfAtWavelength(float lambda) {
 // so the sum is unbiased (to 2^-24 of a unit, the resolution of `u`, a
 // uniform in [0, 1)). floor and the subtraction are exact in float.
 FN uint64_t roundStochastic(float scaled, float u) {
-  PRECISE float whole = floor(scaled);
+  // Clamped below 2^63, so the conversion is defined on both sides for any
+  // weight (a camera connection's grows as 1 / distance^2).
+  PRECISE float whole = floor(min(scaled, 4.0e18f));
   PRECISE float fraction = scaled - whole;
   return uint64_t(whole) + (u < fraction ? 1ul : 0ul);
 }
@@ -150,6 +152,9 @@ FN BeamTally emptyTally() {
 
 // One count of a beam: added to the film, or, in record mode, only noted.
 FN void contribute(INOUT(BeamTally) tally, uvec2 cell, uint bin, float lambda, float ratio, float spareUniform) {
+  // (The squared-weight counter gets each count's own square: with camera
+  // connections one beam may count twice in one pixel, whose cross term it
+  // lacks, so the film's error estimate is then a lower bound.)
   bool counted = true;
   if (SPECTRACE_RECORDING) tally.units = weightUnitsOf(ratio, spareUniform);
   else counted = countBeam(cell, bin, lambda, ratio, spareUniform);

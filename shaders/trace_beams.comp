@@ -22,7 +22,9 @@ layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no lig
 // Always set from the film (not a scene feature).
 layout(constant_id = kSpecHistogramChunks) const uint histogramChunks = kMaxHistogramChunks + 1u;
 layout(constant_id = kSpecCountBeams) const uint countBeamsOnDevice = 1u;
-// Scene objects: 0 none (transport compiled out), 1 some, 2 decided at run time.
+// Scene objects: 0 none (transport compiled out), 1 some, 2 decided at run
+// time. The host always sets the scene's value, the general pipeline too:
+// a scene without objects never reads the object buffers either way.
 layout(constant_id = kSpecObjects) const uint objectsMode = 2u;
 // Bench only: the kernel cut after a stage (profile.h); the default is the whole kernel.
 layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;

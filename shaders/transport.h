@@ -7,8 +7,9 @@
 // Beams carry flux, so scattering is analog and keeps the weight: a
 // surface of reflectance rho reflects a beam with probability rho (Russian
 // roulette with the exact survival probability, unbiased), a dielectric
-// reflects with the Fresnel probability and refracts otherwise. The one
-// source of fractional weights is the camera connection.
+// reflects with the Fresnel probability and refracts otherwise. Camera
+// connections carry fractional weights (as aimed area lights do, which
+// scenes whose objects are all absorbers keep).
 #ifndef SPECTRACE_TRANSPORT_H
 #define SPECTRACE_TRANSPORT_H
 
@@ -29,6 +30,12 @@ FN float reflectanceAt(Material m, float lambda) {
 // The Sellmeier index at a wavelength (nm); the host keeps poles out of the
 // spectrum range.
 FN float refractiveIndexAt(Material m, float lambda) {
+  // A constant index (every C zero) exactly, without the float rounding of
+  // B l^2 / l^2: no dispersion, as colour from the bins assumes.
+  if (m.sellmeierC.x == 0.0f && m.sellmeierC.y == 0.0f && m.sellmeierC.z == 0.0f) {
+    PRECISE float constant = 1.0f + m.sellmeierB.x + m.sellmeierB.y + m.sellmeierB.z;
+    return sqrt(constant);
+  }
   PRECISE float l = lambda * 0.001f;
   PRECISE float l2 = l * l;
   PRECISE float n2 = 1.0f + m.sellmeierB.x * l2 / (l2 - m.sellmeierC.x) + m.sellmeierB.y * l2 / (l2 - m.sellmeierC.y) +
@@ -58,7 +65,7 @@ FN vec3 reflected(vec3 direction, vec3 n) {
 FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float weight, float lambda, uint bin,
                         INOUT(BeamTally) tally) {
   bool pinhole = SPECTRACE_PINHOLE(constants.apertureDistance);
-  if (!(point.z > constants.apertureDistance)) return;
+  if (!(weight > 0.0f) || !(point.z > constants.apertureDistance)) return;
   uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce + 1u);
   float u = uniformFromWord(words.x);
   float v = uniformFromWord(words.y);
@@ -119,8 +126,9 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     Primitive surface = readPrimitive(hit.primitive);
     Material material = readMaterial(surface.material);
     if (material.type == kMaterialAbsorber) return;
-    PRECISE vec3 point = origin + direction * hit.t;
-    vec3 n = primitiveNormal(surface, point);
+    PRECISE vec3 found = origin + direction * hit.t;
+    vec3 n = primitiveNormal(surface, found);
+    vec3 point = pointOnSurface(surface, found, n);
     bool fromOutside = dot3(direction, n) < 0.0f;
     vec3 facing = fromOutside ? n : -n;  // towards the side the beam came from
     uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce);

@@ -169,13 +169,17 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
         tableBytes, plan.device.intervals.size(), label, plan.device.lights[largest].spectralCount,
         maxStorageBufferRange, deviceName));
   }
-  const uint64_t primitiveBytes = std::max(plan.device.primitives.size() * sizeof(device::Primitive),
-                                           plan.device.bvhNodes.size() * sizeof(device::BvhNode));
-  if (primitiveBytes > maxStorageBufferRange)
+  const uint64_t objectBytes = std::max({plan.device.primitives.size() * sizeof(device::Primitive),
+                                          plan.device.bvhNodes.size() * sizeof(device::BvhNode),
+                                          plan.device.materials.size() * sizeof(device::Material),
+                                          plan.device.reflectance.size() * sizeof(float)});
+  if (objectBytes > maxStorageBufferRange)
     throw SceneError(fmt::format(
-        "/objects: the objects' {} primitives and {} BVH nodes need {} bytes in one storage buffer, more than the {} "
-        "bytes of maxStorageBufferRange of {}; use fewer triangles, or --device cpu",
-        plan.device.primitives.size(), plan.device.bvhNodes.size(), primitiveBytes, maxStorageBufferRange, deviceName));
+        "/objects: the objects' {} primitives, {} BVH nodes, {} materials and {} reflectance nodes need {} bytes in "
+        "one storage buffer, more than the {} bytes of maxStorageBufferRange of {}; use fewer triangles or objects, "
+        "or --device cpu",
+        plan.device.primitives.size(), plan.device.bvhNodes.size(), plan.device.materials.size(),
+        plan.device.reflectance.size(), objectBytes, maxStorageBufferRange, deviceName));
   const uint64_t filmBytes = plan.film.storedCounterCount() * sizeof(uint64_t);
   if (deviceLocalHeapBytes > 0 && filmBytes > deviceLocalHeapBytes)
     throw SceneError(fmt::format(

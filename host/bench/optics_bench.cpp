@@ -179,12 +179,12 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
       add(rowOf("mesh 1M triangles", "default", pair, meanImage(pair)));
     }
     // The same beams either way: brute force finds the same closest
-    // surfaces, so the images are the same and only the time differs.
+    // surfaces, so only the time differs. (A beam on a shared edge may meet
+    // either triangle first; the row says whether the images differ.)
     const auto [bvh, brute] =
         compareVariants(smallMesh, "mesh 1k triangles", {"bvh", 500'000, {}},
                         {"brute force", 500'000, [](RenderOptions& o) { o.plan.bruteForceObjects = true; }}, *device);
-    if (bvh.a.image.irradiance != brute.a.image.irradiance)
-      throw std::runtime_error("bench: the BVH and brute force gave different images of the same beams");
+    rows.back().sameImageAsFirst = bvh.a.image.irradiance == brute.a.image.irradiance;
   }
   return rows;
 }

@@ -31,6 +31,7 @@ struct OpticsRow {
   double traceSeconds = 0.0;  // the trace loop's wall time, least of the two renders
   double relMse = 0.0;
   double fom = 0.0;           // 1 / (relMSE x traceSeconds)
+  bool sameImageAsFirst = false;  // a second variant: its image equals the first's bit for bit
   double beamsPerSecond() const { return double(beams) / traceSeconds; }
 };
 

@@ -23,9 +23,10 @@ struct PlacedPrimitive {
 
 glm::dvec3 toDouble(const glm::vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
-// Widens a box by a little more than the float rounding of the points the
-// kernel computes on it (a few ulps of its coordinates and of its size), so
-// the BVH never prunes a surface the primitive test would find.
+// Widens a box by a little more than the float rounding of the primitive's
+// own points (a few ulps of its coordinates and of its size). The ray-box
+// test widens its far distance too (objects.h); a ray that only grazes a
+// primitive's edge may still be pruned where a brute-force walk finds it.
 PrimitiveBounds padded(glm::dvec3 lo, glm::dvec3 hi) {
   const double size = glm::length(hi - lo);
   for (int i = 0; i < 3; ++i) {
@@ -46,17 +47,24 @@ PrimitiveBounds boundsOfPoints(std::initializer_list<glm::dvec3> points) {
   return padded(lo, hi);
 }
 
-PlacedPrimitive placeTriangle(const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2, uint32_t material) {
-  PlacedPrimitive placed;
+// Returns false, placing nothing, for a triangle whose float edges are
+// parallel: validation refuses zero area in double, but a sliver can still
+// lose it in float, and its normal would be NaN. Beams could not meet it.
+bool placeTriangle(const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2, uint32_t material,
+                   PlacedPrimitive& placed) {
   device::Primitive& p = placed.primitive;
   p.type = device::kPrimitiveTriangle;
   p.material = material;
   p.a = toFloat(v0);
   p.b = toFloat(v1 - v0);
   p.c = toFloat(v2 - v0);
+  const glm::vec3 n = glm::cross(p.b, p.c);
+  // (1e-30 m^4: an area below 1e-15 m^2, whose normal's length would
+  // underflow when the kernel squares it.)
+  if (!(glm::dot(n, n) > 1e-30f) || !std::isfinite(glm::dot(n, n))) return false;
   const glm::dvec3 a = toDouble(p.a);
   placed.bounds = boundsOfPoints({a, a + toDouble(p.b), a + toDouble(p.c)});
-  return placed;
+  return true;
 }
 
 void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material, std::vector<PlacedPrimitive>& out) {
@@ -104,9 +112,12 @@ void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material,
       // The camera frame (right = forward x up, up, forward) is a mirror
       // image of the world, so a triangle's corners are taken in the other
       // order there: counter-clockwise from outside stays outwards.
-      for (const auto& t : shape.triangles)
-        out.push_back(placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[2]]),
-                                    frame.pointToLocal(shape.vertices[t[1]]), material));
+      for (const auto& t : shape.triangles) {
+        PlacedPrimitive triangle;
+        if (placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[2]]),
+                          frame.pointToLocal(shape.vertices[t[1]]), material, triangle))
+          out.push_back(triangle);
+      }
       return;
   }
 }

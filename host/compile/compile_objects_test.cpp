@@ -140,6 +140,31 @@ TEST(CompiledObjects, EveryPrimitiveOnceInTheBvhAndABoxHoldsEachOne) {
   }
 }
 
+TEST(ObjectValidation, AGlassMeshMustFaceOutwards) {
+  // A closed, consistently wound tetrahedron, outwards (counter-clockwise
+  // from outside), then turned inside out: glass would refract every beam
+  // the wrong way, so it is refused.
+  Scene scene = pointLightScene();
+  SceneObject glass;
+  glass.label = "/objects/0";
+  glass.shape.type = ShapeType::Mesh;
+  glass.shape.closed = true;
+  glass.shape.vertices = {{0.0, 0.0, 0.5}, {0.1, 0.0, 0.5}, {0.0, 0.1, 0.5}, {0.0, 0.0, 0.6}};
+  glass.shape.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  glass.material.type = MaterialType::Dielectric;
+  glass.material.sellmeierB = {1.25, 0.0, 0.0};
+  scene.objects = {glass};
+  EXPECT_NO_THROW(compileScene(scene, 1));
+  for (auto& t : scene.objects[0].shape.triangles) std::swap(t[1], t[2]);
+  try {
+    compileScene(scene, 1);
+    FAIL() << "an inside-out glass mesh was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/objects/0/material"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("face outwards"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReflectanceTables, EvenlySpacedNodesAreReproducedExactly) {
   SurfaceMaterial m;
   m.type = MaterialType::Diffuse;

@@ -321,6 +321,19 @@ void validateMaterial(const SurfaceMaterial& m, const Shape& shape, const Spectr
                                          describeEdgeFault(*fault, 0, [](size_t k) {
                                            return fmt::format("triangle {}", k);
                                          })));
+  // Consistent winding can still be inside out: glass then refracts every
+  // beam the wrong way. Outward faces enclose a positive signed volume.
+  if (shape.type == ShapeType::Mesh) {
+    double volume6 = 0.0;  // six times the signed volume
+    for (const auto& t : shape.triangles)
+      volume6 += glm::dot(shape.vertices[t[0]], glm::cross(shape.vertices[t[1]], shape.vertices[t[2]]));
+    if (!(volume6 > 0.0))
+      check.fail("material", fmt::format("a dielectric mesh must face outwards (counter-clockwise seen from outside), "
+                                         "but {}'s faces enclose a signed volume of {:g} m^3; turn every face round",
+                                         shape.meshFile.empty() ? std::string("this mesh")
+                                                                : jf::jsonQuoted(shape.meshFile.string()),
+                                         volume6 / 6.0));
+  }
 }
 
 void validateObject(const SceneObject& object, size_t index, const Scene& scene, const SceneChecker& c) {
