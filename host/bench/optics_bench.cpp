@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/renderer.h"
+#include "scene/scene_builders.h"
 
 namespace spectrace {
 namespace {
@@ -75,24 +76,12 @@ OpticsRow rowOf(const std::string& scene, const std::string& variant, const Rend
 // mesh scene. (Most beams meet the sphere, so the image converges at a
 // rate that shows the mesh's cost, not a light that mostly misses.)
 Scene meshScene(uint64_t triangles) {
-  Scene scene;
-  scene.camera.position = {0.0, 0.0, 0.0};
-  scene.camera.lookAt = {0.0, 0.0, 1.0};
-  scene.camera.up = {0.0, 1.0, 0.0};
-  scene.camera.sensorWidthM = 0.024;
-  scene.camera.sensorHeightM = 0.024;
-  scene.camera.pixelsX = 128;
-  scene.camera.pixelsY = 128;
+  Scene scene = bareSensorScene(0.024, 0.024, 128, 128, SpectrumRange{}.bins);
   scene.camera.pinhole = Pinhole{0.04, 0.001};
-  Light light;
-  light.type = LightType::Spot;
-  light.label = "/lights/0";
-  light.position = {0.6, 0.6, 0.4};
-  light.direction = glm::normalize(glm::dvec3(-0.6, -0.6, 0.6));  // at the sphere's centre, 1.04 m away
-  light.coneHalfAngleDeg = 17.5;  // asin(0.3 / 1.04) = 16.8 degrees: the whole sphere
-  light.powerW = 10.0;
-  light.spd = makeLineSpd(550.0);
-  light.spdLabel = "550 nm";
+  // At the sphere's centre, 1.04 m away; asin(0.3 / 1.04) = 16.8 degrees: the whole sphere.
+  Light light = surfaceLight(LightType::Spot, {0.6, 0.6, 0.4}, glm::normalize(glm::dvec3(-0.6, -0.6, 0.6)), 10.0,
+                             makeLineSpd(550.0), "550 nm");
+  light.coneHalfAngleDeg = 17.5;
   scene.lights.push_back(light);
   SceneObject sphere;
   sphere.label = "/objects/0";
