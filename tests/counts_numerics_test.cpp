@@ -28,6 +28,7 @@
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
+#include "support/test_scale.h"
 
 namespace spectrace {
 namespace {
@@ -359,7 +360,7 @@ double expectPointLightCounts(const SpectralHistogram& histogram, const Scene& s
 }
 
 TEST(CountsNumerics, RendersAtBeamIndicesNear2To32And2To40) {
-  constexpr uint64_t kBeams = 8'000'000;
+  const uint64_t kBeams = testing::scaledBeams(8'000'000, 800'000) / 4 * 4;
   Scene scene = testing::bareSensorScene(0.036, 0.024, 48, 32, 16);
   scene.lights = {pointLight({0.004, -0.003, 0.012}, 2.0, *cieIlluminant("D65"))};
   const CompiledScene plan = compileScene(scene, 2718);

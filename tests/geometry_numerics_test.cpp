@@ -33,6 +33,7 @@
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
+#include "support/test_scale.h"
 
 namespace spectrace {
 namespace {
@@ -248,7 +249,7 @@ TEST(GeometryNumericsScale, SpotAMillionMetresFromAMillimetreSensor) {
   // which holds the whole 1 mm sensor: a pixel receives the share
   // Omega(pixel) / (2 pi (1 - cos a)) of the beams.
   constexpr double kDistance = 1e6, kHalfAngle = 8e-10;
-  constexpr uint64_t kBeams = 8'000'000;
+  const uint64_t kBeams = testing::scaledBeams(8'000'000, 1'000'000);
   Scene scene = bareSensor(1e-3, 1e-3, 16, 16);
   scene.lights = {spotLight({0.0, 0.0, kDistance}, {0.0, 0.0, -1.0}, kHalfAngle)};
   const CompiledScene plan = compileScene(scene, 11);
@@ -266,7 +267,7 @@ TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
   // A collimated beam of radius 1 mm, slightly off axis, covers the whole
   // sensor: each pixel receives area / (pi r^2) of the beams.
   constexpr double kRadius = 1e-3;
-  constexpr uint64_t kBeams = 8'000'000;
+  const uint64_t kBeams = testing::scaledBeams(8'000'000, 1'000'000);
   Scene scene = bareSensor(1e-3, 1e-3, 16, 16);
   scene.lights = {laserLight({1e-4, -5e-5, 1e6}, {0.0, 0.0, -1.0}, kRadius)};
   const CompiledScene plan = compileScene(scene, 12);
@@ -283,7 +284,7 @@ TEST(GeometryNumericsScale, LaserAMillionMetresFromAMillimetreSensor) {
 
 TEST(GeometryNumericsScale, MicrometrePixels) {
   // 64 x 64 pixels of 1 µm, a point light 50 µm above and a little off centre.
-  constexpr uint64_t kBeams = 16'000'000;
+  const uint64_t kBeams = testing::scaledBeams(16'000'000, 2'000'000);
   Scene scene = bareSensor(64e-6, 64e-6, 64, 64);
   scene.lights = {pointLight({3e-6, -7e-6, 50e-6}, 1.0, makeLineSpd(550.0))};
   const CompiledScene plan = compileScene(scene, 13);
@@ -314,7 +315,7 @@ Scene farCameraScene(const glm::dvec3& position, const glm::dvec3& viewDirection
 }
 
 TEST(GeometryNumericsScale, CameraFarFromTheOriginMatchesTheSameSetupAtTheOrigin) {
-  constexpr uint64_t kBeams = 16'000'000;
+  const uint64_t kBeams = testing::scaledBeams(16'000'000, 2'000'000);
   const glm::dvec3 nearLocal(0.004, -0.002, 0.03), farLocal(3000.0, -500.0, 8000.0);
   struct Case {
     const char* name;
@@ -399,7 +400,7 @@ bool finiteRecord(const device::LightRecord& r) {
 }
 
 TEST(GeometryNumericsAngles, GrazingLaserMatchesItsEllipticFootprint) {
-  constexpr uint64_t kBeams = 4'000'000;
+  const uint64_t kBeams = testing::scaledBeams(4'000'000, 500'000);
   for (double eps : {1e-6, 1e-12, 1e-20, 1e-30}) {
     const std::string name = format("laser at %g rad to the sensor", eps);
     const GrazingSetup g = grazingLaser(eps);

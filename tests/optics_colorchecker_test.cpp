@@ -31,9 +31,11 @@
 // chromaticity scatter of 0.15-0.41 (x or y, per patch, computed from the
 // tables), so 5 sigma < 1e-3 needs about 4 million connections on the
 // worst patches (bluish green, cyan): 220 million beams, about half of
-// which connect inside a patch. That is the CPU reference's part (about
-// 27 s on 2 idle cores); lavapipe, at about 2 Mbeam/s here, traces the
-// first 4 million beams, which must give the CPU's film bit for bit.
+// which connect inside a patch. That is the CPU reference's part;
+// lavapipe traces the first 4 million beams, which must give the CPU's film
+// bit for bit. At a smaller test scale (tests/support/test_scale.h) both
+// counts shrink and the tolerance grows as 1 / sqrt(beams), so it stays
+// 5 standard errors above the noise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,6 +50,7 @@
 #include "colour/colour.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "support/test_scale.h"
 
 namespace spectrace {
 namespace {
@@ -245,9 +248,9 @@ RenderOptions optionsFor(DeviceChoice device, uint64_t beams) {
 // that film to kCpuBeams. So everything the CPU's render shows about those
 // beams holds for lavapipe's. The tolerance is checked on the CPU's full
 // render, and lavapipe's own image to 5 sigma of its noise.
-constexpr uint64_t kGpuBeams = 4'000'000;
-constexpr uint64_t kCpuBeams = 224'000'000;
-constexpr double kTolerance = 1e-3;
+const testing::ScaledBeams kGpuBeams = testing::scaledBeams(4'000'000, 400'000);
+const testing::ScaledBeams kCpuBeams = testing::scaledBeams(224'000'000);
+const double kTolerance = kCpuBeams.tolerance(1e-3);
 
 TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) {
   const Scene scene = colorCheckerScene();
@@ -256,7 +259,7 @@ TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) 
   // Per-beam colour sums, not colour from the bins (the reflectances vary).
   ASSERT_TRUE(gpu.plan.film.exactColour);
   ASSERT_FALSE(gpu.plan.film.colourFromBins);
-  std::printf("%s: %llu beams in %.2f s\n", gpu.deviceName.c_str(), (unsigned long long)kGpuBeams, gpu.wallSeconds);
+  std::printf("%s: %llu beams in %.2f s\n", gpu.deviceName.c_str(), (unsigned long long)kGpuBeams.beams, gpu.wallSeconds);
 
   const RenderResult prefix = render(scene, optionsFor(DeviceChoice::Cpu, kGpuBeams));
   ASSERT_EQ(prefix.deviceKind, DeviceKind::Cpu);
@@ -269,8 +272,8 @@ TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) 
   options.resumeFilm = &prefix.histogram;
   options.resumedBeams = kGpuBeams;
   const RenderResult cpu = render(scene, options);
-  ASSERT_EQ(cpu.beamsTraced, kCpuBeams);
-  std::printf("%s: %llu more beams in %.2f s\n", cpu.deviceName.c_str(), (unsigned long long)(kCpuBeams - kGpuBeams),
+  ASSERT_EQ(cpu.beamsTraced, kCpuBeams.beams);
+  std::printf("%s: %llu more beams in %.2f s\n", cpu.deviceName.c_str(), (unsigned long long)(kCpuBeams.beams - kGpuBeams.beams),
               cpu.wallSeconds);
   const ChartResult chart = checkChart(scene, cpu.image, "CPU reference", kTolerance);
   RecordProperty("worst_error", std::to_string(chart.worstError));

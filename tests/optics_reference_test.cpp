@@ -39,6 +39,7 @@
 #include "render/renderer.h"
 #include "support/object_scenes.h"
 #include "support/render_comparison.h"
+#include "support/test_scale.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
@@ -289,7 +290,8 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
   // Analog: plain counts. A beam is counted at most once (the camera's body
   // ends it), so a pixel's count is binomial and its sigma follows from the
   // expected irradiance.
-  constexpr uint64_t kAnalogBeams = 8'000'000;
+  // (At a smaller test scale, still tens of counts a pixel: z stays Gaussian.)
+  const uint64_t kAnalogBeams = testing::scaledBeams(8'000'000, 1'000'000);
   const RenderResult analog = renderHere(p.scene, kAnalogBeams, 11, analogTransport());
   ASSERT_FALSE(analog.plan.film.weighted());
   const double k = analog.plan.irradiancePerCount(kAnalogBeams);
@@ -304,7 +306,7 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
   // S2 / S1^2 - 1 / N over the weights, the sample variance of the per-beam
   // contribution) is the estimator's standard error, here from hundreds of
   // counts per pixel.
-  constexpr uint64_t kConnectBeams = 1'000'000;
+  const uint64_t kConnectBeams = testing::scaledBeams(1'000'000, 250'000);
   const RenderResult connected = renderHere(p.scene, kConnectBeams, 12);
   ASSERT_TRUE(connected.plan.film.weighted());
   ASSERT_EQ(connected.image.irradianceError.size(), expected.size());
@@ -347,7 +349,8 @@ TEST_P(OpticsReference, PointLightInAPlaneMirror) {
   Scene direct = testing::bareSensorScene(0.02, 0.02, 8, 8, 4);
   direct.lights = {testing::pointLight(toWorld(direct.camera, image), kPower, makeLineSpd(550.0))};
 
-  constexpr uint64_t kBeams = 8'000'000, kDirectBeams = 2'000'000;
+  const uint64_t kBeams = testing::scaledBeams(8'000'000, 1'000'000);
+  const uint64_t kDirectBeams = testing::scaledBeams(2'000'000, 250'000);
   const RenderResult seen = renderHere(mirror, kBeams, 21);
   const RenderResult reference = renderHere(direct, kDirectBeams, 22);  // shortcuts on: aimed at the sensor
   ASSERT_FALSE(seen.plan.film.weighted());
@@ -411,7 +414,7 @@ TEST_P(OpticsReference, AbsorbingDiskCastsItsGeometricShadow) {
   for (bool aim : {true, false}) {
     CompileOptions options;
     options.aim = aim;
-    const uint64_t kBeams = aim ? 1'000'000 : 8'000'000;
+    const testing::ScaledBeams kBeams = testing::scaledBeams(aim ? 1'000'000 : 8'000'000, aim ? 125'000 : 1'000'000);
     const RenderResult result = renderHere(scene, kBeams, aim ? 31 : 32, options);
     ASSERT_FALSE(result.plan.film.weighted());
     ASSERT_EQ(result.plan.summaries.at(0).aimed, aim);
@@ -446,11 +449,12 @@ TEST_P(OpticsReference, AbsorbingDiskCastsItsGeometricShadow) {
         }
       }
     // The zero counts mean something: without the disk each umbra pixel
-    // would expect thousands of counts (P(0) = e^-mu).
+    // would expect thousands of counts at full scale (P(0) = e^-mu), in
+    // proportion at a smaller one.
     std::printf("  %s: %d umbra pixels (each would expect >= %.0f counts unoccluded), %zu outside the shadow\n",
                 label.c_str(), umbra, leastUmbraCounts, outsideExpected.size());
     EXPECT_GE(umbra, 12);
-    EXPECT_GT(leastUmbraCounts, 1000.0);
+    EXPECT_GT(leastUmbraCounts, 1000.0 * double(kBeams.beams) / double(kBeams.full));
     EXPECT_GE(outsideExpected.size(), 150u);
     expectPixels(outsideMeasured, outsideExpected, outsideSigma, label + ", outside the shadow");
   }
@@ -652,16 +656,24 @@ void expectFurnace(double rho, uint32_t bounces, bool connect, uint64_t beams, c
 
 // Reflectance 1: nothing is lost but what the sensor's plate takes, and
 // D = 8 stops the beams.
-TEST_P(OpticsReference, WhiteFurnaceAnalog) { expectFurnace(1.0, 8, false, 4'000'000, device(), name()); }
+TEST_P(OpticsReference, WhiteFurnaceAnalog) {
+  expectFurnace(1.0, 8, false, testing::scaledBeams(4'000'000, 400'000), device(), name());
+}
 
 // Connected, a beam makes up to D counts: this once overran the CPU
 // reference's queue of pending film adds (now flushed when full).
-TEST_P(OpticsReference, WhiteFurnaceConnected) { expectFurnace(1.0, 8, true, 1'600'000, device(), name()); }
+TEST_P(OpticsReference, WhiteFurnaceConnected) {
+  expectFurnace(1.0, 8, true, testing::scaledBeams(1'600'000, 160'000), device(), name());
+}
 
 // rho = 0.5 with D = 40 (rho^40 ~ 1e-12: the depth limit is all but never
 // reached, yet the sum runs to D exactly).
-TEST_P(OpticsReference, GreyFurnaceAnalog) { expectFurnace(0.5, 40, false, 8'000'000, device(), name()); }
-TEST_P(OpticsReference, GreyFurnaceConnected) { expectFurnace(0.5, 40, true, 1'600'000, device(), name()); }
+TEST_P(OpticsReference, GreyFurnaceAnalog) {
+  expectFurnace(0.5, 40, false, testing::scaledBeams(8'000'000, 800'000), device(), name());
+}
+TEST_P(OpticsReference, GreyFurnaceConnected) {
+  expectFurnace(0.5, 40, true, testing::scaledBeams(1'600'000, 160'000), device(), name());
+}
 
 // --- 6. closed meshes face outwards, and a glass slab transmits ------------------
 //
@@ -815,7 +827,9 @@ void expectIdenticalRecords(bool connect, uint32_t count) {
 
 TEST(OpticsReferenceBeams, EveryShapeAndMaterialConnectedBeamByBeam) { expectIdenticalRecords(true, 200'000); }
 // Analog transport through a pinhole counts few beams (~0.3%): more of them.
-TEST(OpticsReferenceBeams, EveryShapeAndMaterialAnalogBeamByBeam) { expectIdenticalRecords(false, 1'000'000); }
+TEST(OpticsReferenceBeams, EveryShapeAndMaterialAnalogBeamByBeam) {
+  expectIdenticalRecords(false, uint32_t(testing::scaledBeams(1'000'000, 200'000)));
+}
 
 }  // namespace
 }  // namespace spectrace

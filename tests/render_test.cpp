@@ -8,6 +8,7 @@
 #include "support/cpu_trace.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
+#include "support/test_scale.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
@@ -45,18 +46,19 @@ TEST(Render, AutoPicksTheVulkanDeviceWhenThereIsOne) {
 }
 
 TEST(Render, CancelledRenderKeepsExactlyTheFinishedBeams) {
+  const uint64_t beams = testing::scaledBeams(4'000'000, 400'000) / 4 * 4;  // four whole batches
   for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
     std::atomic<bool> cancel{false};
     RenderOptions options;
-    options.beams = 4'000'000;
+    options.beams = beams;
     options.seed = 99;
     options.device = device;
-    options.batchBeams = 1'000'000;
+    options.batchBeams = beams / 4;
     options.cancel = &cancel;
-    options.onProgress = [&](uint64_t done, uint64_t) { cancel.store(done >= 2'000'000); };
+    options.onProgress = [&](uint64_t done, uint64_t) { cancel.store(done >= beams / 2); };
     const RenderResult partial = render(smallScene(), options);
-    EXPECT_EQ(partial.beamsTraced, 2'000'000u);
-    // The partial histogram is exactly that of beams [0, 2e6), and the image
+    EXPECT_EQ(partial.beamsTraced, beams / 2);
+    // The partial histogram is exactly that of the first two batches, and the image
     // is normalised by the beams actually traced.
     SpectralHistogram reference;
     traceOnCpu(partial.plan, 0, partial.beamsTraced, reference);
@@ -100,21 +102,25 @@ void expectSameImage(const RenderImage& a, const RenderImage& b, const char* wha
 }
 
 TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
-  const RenderResult gpuReference = renderWith(DeviceChoice::Gpu, 3'000'000, 3'000'000);
+  // 3 million beams at full scale; the batch sizes keep their proportions
+  // to the total at any test scale (700,001, 999,999, 1,234,567 at full).
+  const uint64_t n = testing::scaledBeams(3'000'000, 300'000);
+  const auto part = [n](uint64_t atFullScale) { return atFullScale * n / 3'000'000; };
+  const RenderResult gpuReference = renderWith(DeviceChoice::Gpu, n, n);
   const auto& reference = gpuReference.histogram;
-  expectSameImage(renderWith(DeviceChoice::Gpu, 3'000'000, 700'001).image, gpuReference.image, "gpu image, batch 700001");
-  expectSameImage(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 32).image, gpuReference.image, "gpu image, workgroup 32");
-  expectSameImage(renderWith(DeviceChoice::Cpu, 3'000'000, 0, 64, 1).image,
-                  renderWith(DeviceChoice::Cpu, 3'000'000, 999'999, 64, 2).image, "cpu image, 1 vs 2 threads");
+  expectSameImage(renderWith(DeviceChoice::Gpu, n, part(700'001)).image, gpuReference.image, "gpu image, odd batches");
+  expectSameImage(renderWith(DeviceChoice::Gpu, n, 0, 32).image, gpuReference.image, "gpu image, workgroup 32");
+  expectSameImage(renderWith(DeviceChoice::Cpu, n, 0, 64, 1).image,
+                  renderWith(DeviceChoice::Cpu, n, part(999'999), 64, 2).image, "cpu image, 1 vs 2 threads");
   ASSERT_TRUE(reference.hasExactColour());
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, 3'000'000, 700'001).histogram, reference, "batch 700001");
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 256).histogram, reference, "workgroup 256");
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, 3'000'000, 0, 32).histogram, reference, "workgroup 32");
-  expectSameHistogram(renderWith(DeviceChoice::Cpu, 3'000'000, 0, 64, 1).histogram, reference, "cpu, 1 thread");
-  expectSameHistogram(renderWith(DeviceChoice::Cpu, 3'000'000, 1'234'567, 64, 2).histogram, reference, "cpu, 2 threads");
+  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, part(700'001)).histogram, reference, "odd batches");
+  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, 0, 256).histogram, reference, "workgroup 256");
+  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, 0, 32).histogram, reference, "workgroup 32");
+  expectSameHistogram(renderWith(DeviceChoice::Cpu, n, 0, 64, 1).histogram, reference, "cpu, 1 thread");
+  expectSameHistogram(renderWith(DeviceChoice::Cpu, n, part(1'234'567), 64, 2).histogram, reference, "cpu, 2 threads");
   // Two renders over disjoint beam ranges merge into the whole.
-  auto first = renderWith(DeviceChoice::Gpu, 1'000'000, 0);
-  first.histogram.merge(renderWith(DeviceChoice::Cpu, 2'000'000, 0, 64, 0, 1'000'000).histogram);
+  auto first = renderWith(DeviceChoice::Gpu, n / 3, 0);
+  first.histogram.merge(renderWith(DeviceChoice::Cpu, n - n / 3, 0, 64, 0, n / 3).histogram);
   expectSameHistogram(first.histogram, reference, "merged halves");
 }
 

@@ -7,6 +7,7 @@
 
 #include "backend/cpu_tracer.h"
 #include "compile/compile_scene.h"
+#include "support/test_scale.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
@@ -67,8 +68,9 @@ TEST(CpuCode, BaselineAlwaysRunsAndNamesItsCode) {
 TEST_F(CpuCodes, SameFilmsBitForBit) {
   for (const Variant& v : kVariants) {
     const CompiledScene plan = compile(v);
-    const SpectralHistogram baseline = render(plan, CpuCode::Baseline, device::kProfileStageFull, 0, 1'000'000);
-    const SpectralHistogram v3 = render(plan, CpuCode::X86_64_V3, device::kProfileStageFull, 0, 1'000'000);
+    const uint64_t beams = testing::scaledBeams(1'000'000, 200'000);
+    const SpectralHistogram baseline = render(plan, CpuCode::Baseline, device::kProfileStageFull, 0, beams);
+    const SpectralHistogram v3 = render(plan, CpuCode::X86_64_V3, device::kProfileStageFull, 0, beams);
     EXPECT_GT(baseline.countedBeams, 1'000u) << v.name << ": too few beams counted to compare";
     expectSameFilm(baseline, v3, v.name);
   }
@@ -95,8 +97,9 @@ TEST_F(CpuCodes, SameBeamRecordsPast2To32) {
 
 TEST_F(CpuCodes, SameProfileStages) {
   const CompiledScene plan = compile(kVariants[0]);
+  const uint64_t beams = testing::scaledBeams(300'000, 60'000);
   for (uint32_t stage = 0; stage <= device::kProfileStageFull; ++stage)
-    expectSameFilm(render(plan, CpuCode::Baseline, stage, 7, 300'000), render(plan, CpuCode::X86_64_V3, stage, 7, 300'000),
+    expectSameFilm(render(plan, CpuCode::Baseline, stage, 7, beams), render(plan, CpuCode::X86_64_V3, stage, 7, beams),
                    "profile stage " + std::to_string(stage));
 }
 
