@@ -4,6 +4,7 @@
 # lines and render-state files.
 #
 #   bash scripts/fuzz.sh [SECONDS]    # SECONDS per target, default 600
+#   bash scripts/fuzz.sh --build-only # install clang and build the targets only
 #
 # Environment: SPECTRACE_FUZZ_PARALLEL (targets run at once, default 1),
 # SPECTRACE_FUZZ_TARGETS (space-separated subset). Installs clang and its
@@ -15,6 +16,8 @@
 # saved under build-fuzz/fuzz/findings/<target>/ and fails the script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+build_only=false
+if [[ ${1:-} == --build-only ]]; then build_only=true; shift; fi
 seconds=${1:-600}
 parallel=${SPECTRACE_FUZZ_PARALLEL:-1}
 targets=(${SPECTRACE_FUZZ_TARGETS:-scene_json csv_spd job_lines film_state})
@@ -32,6 +35,7 @@ fi
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSPECTRACE_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
 cmake --build build-fuzz --target fuzz_targets -j "$(nproc)"
+$build_only && exit 0
 
 work=$PWD/build-fuzz/fuzz
 seed_files() {  # the seed inputs of target $1, one path a line
