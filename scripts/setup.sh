@@ -14,10 +14,8 @@ packages=(
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
   libtinyobjloader-dev                                           # OBJ meshes of scene objects
 )
-# --- Vulkan validation (issue 14, section 4): SPECTRACE_VALIDATION=1 and
-# validation_test need the Khronos layer.
+# SPECTRACE_VALIDATION=1 and validation_test need the Khronos layer.
 packages+=(vulkan-validationlayers)
-# --- end Vulkan validation
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,8 +2,8 @@
 // Where the trace pipeline reads its small tables from: the lights, the
 // spectral intervals, the CMF nodes and the alias columns, read by every
 // beam. lavapipe loads a uniform buffer's values once for a group of lanes
-// and a storage buffer's lane by lane, checked; on the throughput scene the
-// whole process went from 1.64 to 1.19 s on lavapipe (2026-11-23).
+// and a storage buffer's lane by lane (docs/benchmarks.md has what that is
+// worth on the throughput scene).
 //
 // Valid when every table fits the device's maxUniformBufferRange, with its
 // element count rounded up to a power of two (so scenes of similar size
