@@ -17,6 +17,7 @@
 #include "json/json_fields.h"
 #include "json/scene_error.h"
 #include "render/renderer.h"
+#include "backend/cpu_device.h"
 #include "scene/scene.h"
 #include "scene/scene_limits.h"
 #include "session/job_file.h"
@@ -27,6 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+
+DeviceCapabilities cpuReference() { return CpuDevice::referenceCapabilities(); }
 
 // One light, `bins` bins, `pixels` square; the light's spd is `spd` (JSON).
 std::string sceneText(int pixels, int bins, const std::string& spd, int lights = 1) {
@@ -133,16 +136,16 @@ TEST_F(InputLimits, AFilmThatDoesNotFitInMemoryIsRefusedBeforeTracing) {
   // 16384^2 pixels x 100,000 bins: about 600,000 GiB of histogram.
   const Scene scene = parseScene(sceneText(16384, kMaxBins, R"({"blackbody_k": 3000})"), dir / "huge.json");
   const CompiledScene plan = compileScene(scene, 1, {});
-  const uint64_t bytes = filmHostBytes(plan, DeviceKind::Cpu, false);
+  const uint64_t bytes = filmHostBytes(plan, cpuReference(), false);
   const uint64_t histogramBytes = uint64_t(16384) * 16384 * kMaxBins * 8;
   EXPECT_GE(bytes, 2 * histogramBytes);  // the result's histogram and the downloaded one
   // Without a download only the CPU reference's counters (the stored
   // pixels and bins) hold the film; still far too large here.
-  const uint64_t withoutDownload = filmHostBytes(plan, DeviceKind::Cpu, false, false);
+  const uint64_t withoutDownload = filmHostBytes(plan, cpuReference(), false, false);
   EXPECT_EQ(bytes - withoutDownload, 2 * histogramBytes);
   EXPECT_GE(withoutDownload, plan.film.storedCounterCount() * sizeof(uint64_t));
-  EXPECT_THROW(checkFilmFitsMemory(scene, plan, DeviceKind::Cpu, false, false), SceneError);
-  const std::string message = errorOf([&] { checkFilmFitsMemory(scene, plan, DeviceKind::Cpu, false); });
+  EXPECT_THROW(checkFilmFitsMemory(scene, plan, cpuReference(), false, false), SceneError);
+  const std::string message = errorOf([&] { checkFilmFitsMemory(scene, plan, cpuReference(), false); });
   EXPECT_THAT(message, HasSubstr("huge.json: /camera/sensor/pixels: a film of 16384x16384 pixels x 100000 bins needs about " +
                                  std::to_string(bytes) + " bytes"));
   EXPECT_THAT(message, HasSubstr("are available"));
@@ -153,7 +156,7 @@ TEST_F(InputLimits, AFilmThatDoesNotFitInMemoryIsRefusedBeforeTracing) {
   EXPECT_THROW(render(scene, options), SceneError);
   // A small film passes.
   const Scene small = parseScene(sceneText(64, 32, R"({"blackbody_k": 3000})"), dir / "small.json");
-  EXPECT_NO_THROW(checkFilmFitsMemory(small, compileScene(small, 1, {}), DeviceKind::Cpu, true));
+  EXPECT_NO_THROW(checkFilmFitsMemory(small, compileScene(small, 1, {}), cpuReference(), true));
 }
 
 TEST_F(InputLimits, DeviceTablesBeyondTheStorageBufferRangeNameTheLightAndTheLimit) {

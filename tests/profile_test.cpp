@@ -1,4 +1,4 @@
-// The bench's cost profile (shaders/profile.h) and ceiling (bench/ceiling.h):
+// The bench's cost profile (shaders/profile.h) and ceiling (backend/ceiling.h):
 // the full stage is the normal kernel, every stage runs on both devices and
 // draws the same beams on both, and the ceiling traces the throughput
 // scene's geometry.
@@ -9,7 +9,7 @@
 
 #include "backend/cpu_tracer.h"
 #include "backend/vulkan_tracer.h"
-#include "bench/ceiling.h"
+#include "bench/throughput_ceiling.h"
 #include "compile/compile_scene.h"
 #include "render/renderer.h"
 #include "support/test_scenes.h"
@@ -115,8 +115,8 @@ TEST(Profile, EveryStageRunsOnBothDevicesAlike) {
 TEST(Ceiling, HitsAsOftenAsTheFullKernelOnBothDevices) {
   const CeilingScene scene = throughputCeilingScene();
   constexpr uint64_t kCeilingBeams = 2'000'000;
-  const CeilingResult cpu = traceCeilingOnCpu(scene, kCeilingBeams, 2);
-  const CeilingResult gpu = traceCeilingOnVulkan(testing::sharedVulkan(), scene, kCeilingBeams);
+  const CeilingResult cpu = Device::open(DeviceChoice::Cpu)->traceCeiling(scene, kCeilingBeams, 2);
+  const CeilingResult gpu = Device::open(DeviceChoice::Gpu)->traceCeiling(scene, kCeilingBeams);
   EXPECT_GT(cpu.seconds, 0.0);
   EXPECT_GT(gpu.seconds, 0.0);
   // The same hashes and float operations; sin/cos and sqrt may round

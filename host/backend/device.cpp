@@ -3,11 +3,9 @@
 #include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
-#include "backend/cpu_tracer.h"
-#include "backend/vulkan_tracer.h"
-#include "vulkan/context.h"
+#include "backend/cpu_device.h"
+#include "backend/vulkan_device.h"
 
 namespace spectrace {
 
@@ -26,6 +24,20 @@ DeviceChoice parseDeviceChoice(const std::string& text) {
   throw std::invalid_argument(fmt::format("unknown device '{}': use auto, gpu or cpu", text));
 }
 
+namespace {
+
+// Every Vulkan device the loader reports, usable or not; none without a
+// loader.
+std::vector<vk_util::DeviceInfo> vulkanDevices() {
+  try {
+    return vk_util::enumerateDevices();
+  } catch (const vk_util::VulkanError&) {
+    return {};
+  }
+}
+
+}  // namespace
+
 std::vector<DeviceSpec> listDevices(const std::string& filter) {
   std::vector<std::string> wanted;
   std::stringstream list(filter);
@@ -34,83 +46,67 @@ std::vector<DeviceSpec> listDevices(const std::string& filter) {
   auto accepted = [&](const DeviceSpec& d) {
     if (wanted.empty()) return true;
     for (const auto& w : wanted)
-      if (w == deviceKindName(d.kind) || w == d.name) return true;
+      if (w == deviceKindName(d.kind()) || w == d.name()) return true;
     return false;
   };
   std::vector<DeviceSpec> devices;
-  try {
-    for (const auto& info : vk_util::enumerateDevices()) {
-      if (!info.missingFeatures().empty()) continue;
-      DeviceSpec d{DeviceKind::Vulkan, info.name, int(info.index)};
-      if (accepted(d)) devices.push_back(d);
-    }
-  } catch (const vk_util::VulkanError&) {
-    // No Vulkan: the CPU reference alone.
+  for (const auto& info : vulkanDevices()) {
+    DeviceSpec d{vulkanCapabilities(info), int(info.index)};
+    if (d.capabilities.unusableBecause.empty() && accepted(d)) devices.push_back(d);
   }
-  DeviceSpec cpu{DeviceKind::Cpu,
-                 fmt::format("CPU reference, {} threads, {}", std::max(1u, std::thread::hardware_concurrency()),
-                             cpuCodeName(fastestCpuCode())),
-                 -1};
+  DeviceSpec cpu{CpuDevice::referenceCapabilities(), -1};
   if (accepted(cpu)) devices.push_back(cpu);
   return devices;
 }
 
-Device::Device(std::unique_ptr<vk_util::Context> vulkan)
-    : vulkan_(std::move(vulkan)), buffers_(std::make_shared<TracerBufferPool>()) {}
-// The pooled buffers go before the context they were made on.
-Device::~Device() { buffers_.reset(); }
-
-namespace {
-
-std::unique_ptr<vk_util::Context> withPipelineCache(std::unique_ptr<vk_util::Context> context,
-                                                    const PipelineCacheOptions& cache,
-                                                    const std::function<void(const std::string&)>& log) {
-  context->openPipelineCache(cache.enabled ? (cache.path.empty() ? context->defaultPipelineCachePath() : cache.path) : "",
-                             log);
-  return context;
+std::string describeDevices() {
+  std::vector<vk_util::DeviceInfo> devices;
+  try {
+    devices = vk_util::enumerateDevices();
+  } catch (const vk_util::VulkanError& e) {
+    return fmt::format("No Vulkan: {}\n\n--device auto uses the CPU reference.\n", e.what());
+  }
+  std::string text = vk_util::describeDevices(devices);
+  if (auto index = vk_util::preferredDevice(devices))
+    text += fmt::format("\n--device auto and --device gpu use: {}\n", devices[*index].name);
+  else
+    text += "\nNo usable Vulkan device: --device auto uses the CPU reference.\n";
+  return text;
 }
-
-}  // namespace
 
 std::unique_ptr<Device> Device::open(DeviceChoice choice, const std::function<void(const std::string&)>& log,
                                      const PipelineCacheOptions& cache) {
-  if (choice == DeviceChoice::Cpu) return std::unique_ptr<Device>(new Device(nullptr));
+  if (choice == DeviceChoice::Cpu) return std::make_unique<CpuDevice>();
   std::string why;
   try {
     const auto devices = vk_util::enumerateDevices();
     if (auto index = vk_util::preferredDevice(devices))
-      return std::unique_ptr<Device>(
-          new Device(withPipelineCache(vk_util::Context::create(devices[*index].index), cache, log)));
+      return std::make_unique<VulkanDevice>(vk_util::Context::create(devices[*index].index), cache, log);
     why = devices.empty() ? "no Vulkan device was found" : "no Vulkan device is usable:\n" + vk_util::describeDevices(devices);
   } catch (const vk_util::VulkanError& e) {
     why = e.what();
   }
   if (choice == DeviceChoice::Gpu) throw vk_util::VulkanError("--device gpu: " + why);
   if (log) log("auto: " + why + "; using the CPU reference");
-  return std::unique_ptr<Device>(new Device(nullptr));
+  return std::make_unique<CpuDevice>();
 }
 
 std::unique_ptr<Device> Device::open(const DeviceSpec& spec, const PipelineCacheOptions& cache,
                                      const std::function<void(const std::string&)>& log) {
-  if (spec.kind == DeviceKind::Cpu) return std::unique_ptr<Device>(new Device(nullptr));
-  return std::unique_ptr<Device>(
-      new Device(withPipelineCache(vk_util::Context::create(uint32_t(spec.vulkanIndex)), cache, log)));
+  if (spec.kind() == DeviceKind::Cpu) return std::make_unique<CpuDevice>();
+  return std::make_unique<VulkanDevice>(vk_util::Context::create(uint32_t(spec.vulkanIndex)), cache, log);
 }
 
-void Device::savePipelineCache() const {
-  if (vulkan_) vulkan_->savePipelineCache();
-}
-
-std::string Device::pipelineCachePath() const { return vulkan_ ? vulkan_->pipelineCachePath() : ""; }
-
-uint64_t Device::bufferAllocations() const { return buffers_->allocations(); }
-
-std::unique_ptr<Tracer> Device::makeTracer(const CompiledScene& plan, const TracerOptions& options) const {
-  if (vulkan_)
-    return std::make_unique<VulkanTracer>(*vulkan_, plan, options.workgroupSize, options.specialisedFeatures, buffers_,
-                                          options.profileStage);
-  return std::make_unique<CpuTracer>(plan, options.cpuThreads, options.profileStage,
-                                     options.cpuCode.value_or(fastestCpuCode()));
+std::unique_ptr<Device> Device::openForLocalRank(DeviceChoice choice, int localRank, const PipelineCacheOptions& cache,
+                                                 const std::function<void(const std::string&)>& log) {
+  if (choice != DeviceChoice::Cpu) {
+    std::vector<DeviceSpec> gpus;
+    for (const DeviceSpec& spec : listDevices())
+      if (spec.capabilities.hardwareGpu) gpus.push_back(spec);
+    if (!gpus.empty()) return open(gpus[size_t(localRank) % gpus.size()], cache, log);
+  }
+  // No hardware GPU (or no Vulkan loader): open says so (gpu) or falls back (auto).
+  return open(choice, log, cache);
 }
 
 }  // namespace spectrace

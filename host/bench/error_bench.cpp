@@ -75,8 +75,8 @@ std::vector<SweepRow> runErrorSweep(const std::vector<DeviceSpec>& devices, cons
       for (uint64_t beams : options.beamCounts) {
         SweepRow row;
         row.scene = std::filesystem::path(path).stem().string();
-        row.device = device.kind;
-        row.deviceName = device.name;
+        row.device = device.kind();
+        row.deviceName = device.name();
         row.beams = beams;
         row.exactColour = options.plan.exactColour;
         row.aimed = options.plan.aim;

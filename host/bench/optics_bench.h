@@ -25,6 +25,7 @@ struct OpticsRow {
   std::string scene;    // "prism", "colorchecker", "mesh 1M"
   std::string variant;  // "connect", "analog", "bvh", "brute force"
   DeviceKind device = DeviceKind::Cpu;
+  bool reference = false;  // the CPU reference (the other devices' ratios are to it)
   std::string deviceName;
   uint64_t primitives = 0;
   uint64_t beams = 0, counted = 0;

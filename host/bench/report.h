@@ -12,6 +12,7 @@ namespace spectrace {
 
 struct ThroughputRow {
   DeviceKind device = DeviceKind::Cpu;
+  bool reference = false;  // the CPU reference (the other devices' ratios are to it)
   std::string deviceName;
   bool exactColour = true;
   uint64_t beams = 0, hits = 0;
@@ -104,7 +105,7 @@ inline const char* const kProfileStageNames[] = {"Philox",
                                                  "default: full kernel, colour from bins"};
 
 // spectrace's full kernel (exact colour on) against the ceiling kernel
-// (bench/ceiling.h) on the throughput scene, one device, same run and measure.
+// (backend/ceiling.h) on the throughput scene, one device, same run and measure.
 struct CeilingRow {
   DeviceKind device = DeviceKind::Cpu;
   std::string deviceName;

@@ -22,7 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/ceiling.h"
+#include "bench/throughput_ceiling.h"
 #include "bench/error_bench.h"
 #include "bench/report.h"
 #include "cli/cli_numbers.h"
@@ -31,7 +31,6 @@
 #include "scene/scene.h"
 #include "scene/scene_builders.h"
 #include "session/session.h"
-#include "vulkan/context.h"
 
 namespace spectrace::cli {
 namespace {
@@ -94,8 +93,9 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
                         o.cpuThreads = command.threads;
                         o.plan.exactColour = exactColour;
                       });
-      ThroughputRow row{device.kind, result.deviceName, exactColour, result.beamsTraced, result.summary.countedBeams,
-                        result.traceWallSeconds, result.traceDeviceSeconds};
+      ThroughputRow row{device.kind(), device.capabilities.reference, result.deviceName, exactColour,
+                        result.beamsTraced, result.summary.countedBeams, result.traceWallSeconds,
+                        result.traceDeviceSeconds};
       fmt::print("{:<44} {:<6} {:>9.3f} {:>10.2f} {:>15} {:>8.1f}%\n", row.deviceName, exactColour ? "exact" : "bins",
                  row.wallSeconds, double(row.beams) / row.wallSeconds * 1e-6,
                  row.traceDeviceSeconds > 0 ? fmt::format("{:.2f}", double(row.beams) / row.traceDeviceSeconds * 1e-6) : "-",
@@ -105,7 +105,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
   }
   for (const auto& a : rows)
     for (const auto& b : rows)
-      if (a.device == DeviceKind::Vulkan && b.device == DeviceKind::Cpu && a.exactColour == b.exactColour)
+      if (!a.reference && b.reference && a.exactColour == b.exactColour)
         fmt::print("ratio {} : {} ({} colour) = {:.2f}\n", a.deviceName, b.deviceName, a.exactColour ? "exact" : "binned",
                    (double(a.beams) / a.wallSeconds) / (double(b.beams) / b.wallSeconds));
   return rows;
@@ -118,8 +118,10 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
 struct BestTimes {
   double traceSeconds = INFINITY, resolveSeconds = INFINITY;
   double traceWallSeconds = INFINITY;
-  // Device time on a Vulkan device, wall time of the trace on the CPU.
-  double traceSecondsOn(DeviceKind kind) const { return kind == DeviceKind::Vulkan ? traceSeconds : traceWallSeconds; }
+  // Device time where the device has timestamps, else wall time of the trace.
+  double traceSecondsOn(const DeviceCapabilities& device) const {
+    return device.deviceTimestamps ? traceSeconds : traceWallSeconds;
+  }
 };
 std::vector<BestTimes> interleavedBest(size_t variants, int rounds, const std::function<RenderResult(size_t)>& run) {
   std::vector<BestTimes> best(variants);
@@ -146,7 +148,7 @@ std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vecto
              command.profileBeams, kTimingRounds);
   for (const auto& device : devices) {
     const auto opened = Device::open(device);
-    ProfileRow row{device.kind, device.name, command.profileBeams, {}};
+    ProfileRow row{device.kind(), device.name(), command.profileBeams, {}};
     // The stages with per-beam colour (the reference path, so the exact
     // colour stage has work), then the default: the full kernel with colour
     // from the bins (compile/shortcuts.h).
@@ -158,7 +160,7 @@ std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vecto
         o.profileStage = uint32_t(std::min<size_t>(stage, device::kProfileStageFull));
       });
     });
-    for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.kind));
+    for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.capabilities));
     fmt::print("{}\n{:<36} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", "ns/beam", "increment ns/beam", "share of full");
     const double full = row.nsPerBeam(device::kProfileStageFull);
     for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
@@ -184,18 +186,18 @@ std::vector<CeilingRow> runCeiling(const BenchCommand& command, const std::vecto
   fmt::print("{:<44} {:>16} {:>18} {:>20}\n", "device", "ceiling Mbeam/s", "spectrace Mbeam/s", "spectrace : ceiling");
   for (const auto& device : devices) {
     const auto opened = Device::open(device);
-    const auto context = device.kind == DeviceKind::Vulkan ? vk_util::Context::create(uint32_t(device.vulkanIndex)) : nullptr;
-    CeilingRow row{device.kind, device.name, command.profileBeams, INFINITY, INFINITY, 0};
+    CeilingRow row{device.kind(), device.name(), command.profileBeams, INFINITY, INFINITY, 0};
     for (int round = 0; round < kTimingRounds && !cancel.load(); ++round) {
-      const CeilingResult ceiling = context ? traceCeilingOnVulkan(*context, ceilingScene, row.beams)
-                                            : traceCeilingOnCpu(ceilingScene, row.beams, command.threads);
+      const CeilingResult ceiling = opened->traceCeiling(ceilingScene, row.beams, command.threads);
       row.ceilingSeconds = std::min(row.ceilingSeconds, ceiling.seconds);
       row.ceilingHits = ceiling.hits;
       const RenderResult result = timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
         o.cpuThreads = command.threads;
         o.plan.exactColour = true;
       });
-      row.spectraceSeconds = std::min(row.spectraceSeconds, context ? result.traceDeviceSeconds : result.traceWallSeconds);
+      row.spectraceSeconds = std::min(row.spectraceSeconds, device.capabilities.deviceTimestamps
+                                                                 ? result.traceDeviceSeconds
+                                                                 : result.traceWallSeconds);
     }
     fmt::print("{:<44} {:>16.2f} {:>18.2f} {:>20.3f}\n", row.deviceName, double(row.beams) / row.ceilingSeconds * 1e-6,
                double(row.beams) / row.spectraceSeconds * 1e-6, row.ratio());
@@ -216,10 +218,10 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<DeviceSpec>& 
   fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}   gain of each alone (light types, choice, pinhole, colour, aim)\n",
              "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
   for (const auto& device : devices) {
-    if (device.kind != DeviceKind::Vulkan) continue;
+    if (!device.capabilities.specialisedPipelines || !device.capabilities.deviceTimestamps) continue;
     const auto opened = Device::open(device);
     for (const auto& [name, scene] : scenes) {
-      SpecialisationRow row{name, device.name, uint64_t(1) << 23, 0.0, 0.0, {}};
+      SpecialisationRow row{name, device.name(), uint64_t(1) << 23, 0.0, 0.0, {}};
       // Variants: general, each feature alone, all.
       std::vector<uint32_t> variants = {kSpecialiseNone};
       for (uint32_t feature = 1; feature < kSpecialiseAll; feature <<= 1) variants.push_back(feature);
@@ -249,14 +251,14 @@ std::vector<TrimRow> runTrim(const std::vector<DeviceSpec>& devices, const std::
   fmt::print("{:<28} {:>10} {:>16} {:>16} {:>18} {:>18}\n", "scene", "bins", "pixels", "histogram MiB", "trace s",
              "resolve ms");
   for (const auto& device : devices) {
-    if (device.kind != DeviceKind::Vulkan) continue;
+    if (device.capabilities.filmInHostMemory || !device.capabilities.deviceTimestamps) continue;  // device film and times
     const auto opened = Device::open(device);
     for (const char* name : {"reference/laser_532", "reference/uniform_f11", "reference/uniform_led_b3",
                              "reference/pinhole_rect", "stress/laser_one_pixel", "default"}) {
       const Scene scene = loadScene(scenesDir / (std::string(name) + ".json"));
       TrimRow row;
       row.scene = name;
-      row.deviceName = device.name;
+      row.deviceName = device.name();
       row.beams = uint64_t(1) << 23;
       const auto best = interleavedBest(2, kTimingRounds, [&](size_t v) {
         const bool trim = v == 1;
@@ -306,7 +308,7 @@ std::vector<PipelineCacheRow> runPipelineCacheStudy(const std::vector<DeviceSpec
   };
   bool printed = false;
   for (const auto& spec : devices) {
-    if (spec.kind != DeviceKind::Vulkan) continue;
+    if (!spec.capabilities.pipelineCache) continue;
     if (!printed) {
       fmt::print("\nBatch: time to first beam (open + 4096 beams), cold vs warm pipeline cache\n");
       fmt::print("{:<44} {:>9} {:>9} {:>11} {:>12}\n", "device", "cold s", "warm s", "cold : warm", "cache bytes");
@@ -314,7 +316,7 @@ std::vector<PipelineCacheRow> runPipelineCacheStudy(const std::vector<DeviceSpec
     }
     std::error_code ec;
     std::filesystem::remove_all(folder, ec);
-    PipelineCacheRow row{spec.name};
+    PipelineCacheRow row{spec.name()};
     row.coldSeconds = firstRender(spec);
     row.cacheBytes = std::filesystem::exists(file) ? std::filesystem::file_size(file) : 0;
     row.warmSeconds = firstRender(spec);
@@ -393,9 +395,9 @@ std::vector<BatchProcessRow> runBatchProcesses(const std::vector<DeviceSpec>& de
   fmt::print("{:<44} {:>11} {:>14} {:>17}\n", "device", "batch s", "separate s", "separate : batch");
   std::set<DeviceKind> done;
   for (const auto& spec : devices) {
-    if (!done.insert(spec.kind).second || cancel.load()) continue;  // the CLI picks devices by kind
-    const std::string device = deviceKindName(spec.kind);
-    BatchProcessRow row{spec.name, spec.kind, kJobs, kBeams};
+    if (!done.insert(spec.kind()).second || cancel.load()) continue;  // the CLI picks devices by kind
+    const std::string device = deviceKindName(spec.kind());
+    BatchProcessRow row{spec.name(), spec.kind(), kJobs, kBeams};
     // A warm-up render, so both sides find the same pipeline and shader caches.
     runSelf({"render", (folder / "scene_0.json").string(), "-o", (folder / "warm.exr").string(), "--beams", "1000",
              "--device", device, "-q", "--no-png"});
@@ -429,7 +431,7 @@ std::vector<BatchOverheadRow> runBatchOverhead(const std::vector<DeviceSpec>& de
   std::vector<BatchOverheadRow> rows;
   const Scene lamp = loadScene(lampScene);
   for (const auto& spec : devices) {
-    if (spec.kind != DeviceKind::Vulkan || cancel.load()) continue;
+    if (!spec.capabilities.deviceTimestamps || cancel.load()) continue;  // against the traces' device time
     if (rows.empty()) {
       fmt::print("\nBatch: {} jobs of {} beams in one session, wall time against the traces' device time\n", kJobs,
                  kBeams);
@@ -452,7 +454,7 @@ std::vector<BatchOverheadRow> runBatchOverhead(const std::vector<DeviceSpec>& de
     warm.beams = 1000;
     warm.output = folder / "warm.exr";
     session.render(warm);
-    BatchOverheadRow row{spec.name, kJobs, kBeams};
+    BatchOverheadRow row{spec.name(), kJobs, kBeams};
     std::vector<std::shared_future<RenderResult>> results;
     row.batchWallSeconds = secondsOf([&] {
       for (const RenderJob& job : jobs) results.push_back(session.renderOverlapped(job));
@@ -591,7 +593,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   }
 
   if (command.colour) {
-    fmt::print("\nColour error from binning ({} beams per render, on {})\n", command.colourBeams, report.devices[0].name);
+    fmt::print("\nColour error from binning ({} beams per render, on {})\n", command.colourBeams, report.devices[0].name());
     fmt::print("{:<12} {:>5} {:>14} {:>14} {:>14} {:>10} {:>10} {:>10}\n", "SPD", "bins", "Δxy bins", "(expected)",
                "Δxy per beam", "noise σ", "ΔE bins", "ΔE beam");
     report.colour = runColourBinStudy(report.devices[0], command.colourBeams, [](const ColourBinRow& r) {

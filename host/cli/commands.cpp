@@ -10,11 +10,11 @@
 #include <functional>
 #include <vector>
 
+#include "backend/device.h"
 #include "io/image.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "session/session.h"
-#include "vulkan/context.h"
 
 namespace spectrace::cli {
 namespace {
@@ -198,12 +198,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
 }
 
 int runDevices() {
-  const auto devices = vk_util::enumerateDevices();
-  std::printf("%s", vk_util::describeDevices(devices).c_str());
-  if (auto index = vk_util::preferredDevice(devices))
-    std::printf("\n--device auto and --device gpu use: %s\n", devices[*index].name.c_str());
-  else
-    std::printf("\nNo usable Vulkan device: --device auto uses the CPU reference.\n");
+  std::printf("%s", describeDevices().c_str());
   return 0;
 }
 

@@ -89,7 +89,7 @@ struct BenchCommand {
   bool batch = true;          // batch section: one batch against many processes, overhead of large jobs
   bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
   bool profile = true;        // the kernel's cost by stage (shaders/profile.h)
-  bool ceiling = true;        // spectrace against the ceiling kernel (bench/ceiling.h)
+  bool ceiling = true;        // spectrace against the ceiling kernel (backend/ceiling.h)
   uint64_t profileBeams = uint64_t(1) << 23;  // per stage and device, and per ceiling run
 };
 // --only: runs only the comma-separated sections (throughput, specialisation,

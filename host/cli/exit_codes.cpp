@@ -10,7 +10,6 @@
 #include "session/job_file.h"
 #include "session/session.h"
 #include "spectrum/spd.h"
-#include "vulkan/context.h"
 
 namespace spectrace::cli {
 
@@ -33,8 +32,6 @@ Failure failureOf(const std::exception_ptr& error) {
     return {kExitBadInput, e.what()};
   } catch (const std::invalid_argument& e) {  // parseDeviceChoice
     return {kExitBadInput, e.what()};
-  } catch (const vk_util::VulkanError& e) {
-    return {kExitRuntime, e.what()};
   } catch (const std::bad_alloc&) {
     // Films are checked against the memory before tracing; this is what is left.
     return {kExitRuntime, "out of memory (an allocation failed); use fewer pixels, bins, lights or table rows"};

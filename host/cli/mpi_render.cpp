@@ -63,7 +63,7 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
     std::function<void(const std::string&)> log;
     if (talk) log = say;
     session = std::make_unique<Session>(
-        mpi::openRankDevice(parseDeviceChoice(command.device), world.localRank(), cache, log));
+        Device::openForLocalRank(parseDeviceChoice(command.device), world.localRank(), cache, log));
   });
   if (code != 0) return code;
 

@@ -1,26 +1,6 @@
 #include "mpi/mpi_render.h"
 
-#include "vulkan/context.h"
-
 namespace spectrace::mpi {
-
-std::unique_ptr<Device> openRankDevice(DeviceChoice choice, int localRank, const PipelineCacheOptions& cache,
-                                       const std::function<void(const std::string&)>& log) {
-  if (choice != DeviceChoice::Cpu) {
-    std::vector<vk_util::DeviceInfo> gpus;
-    try {
-      for (const auto& info : vk_util::enumerateDevices())
-        if (info.isHardware() && info.missingFeatures().empty()) gpus.push_back(info);
-    } catch (const vk_util::VulkanError&) {
-      // No Vulkan loader: Device::open below says so (gpu) or falls back (auto).
-    }
-    if (!gpus.empty()) {
-      const auto& gpu = gpus[size_t(localRank) % gpus.size()];
-      return Device::open(DeviceSpec{DeviceKind::Vulkan, gpu.name, int(gpu.index)}, cache, log);
-    }
-  }
-  return Device::open(choice, log, cache);
-}
 
 BeamRange rankBeams(const RenderJob& job, int rank, int size) {
   return shardRange(job.options.firstBeam, job.beamCount(), uint64_t(rank), uint64_t(size));

@@ -1,6 +1,7 @@
 #pragma once
-// A render split over MPI ranks, rank by rank: which beams a rank traces,
-// on which device, and the state rank 0 makes of every rank's film. The MPI
+// A render split over MPI ranks, rank by rank: which beams a rank traces
+// (each rank's device is Device::openForLocalRank's choice), and the state
+// rank 0 makes of every rank's film. The MPI
 // calls themselves are mpi_world.h's; the CLI (cli/mpi_render.cpp) runs the
 // steps and agrees on failures.
 #include <functional>
@@ -14,12 +15,6 @@
 #include "session/session.h"
 
 namespace spectrace::mpi {
-
-// This rank's device. auto and gpu: the node's hardware GPUs are shared out
-// by local rank (local rank modulo their number); without one, what
-// Device::open(choice) picks (lavapipe, else for auto the CPU reference).
-std::unique_ptr<Device> openRankDevice(DeviceChoice choice, int localRank, const PipelineCacheOptions& cache,
-                                       const std::function<void(const std::string&)>& log);
 
 // The beams rank `rank` of `size` traces: exactly those of --shard rank/size.
 BeamRange rankBeams(const RenderJob& job, int rank, int size);

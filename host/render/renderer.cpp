@@ -89,26 +89,26 @@ std::string scenePrefix(const Scene& scene) {
 
 }  // namespace
 
-uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral, bool downloadsFilm) {
+uint64_t filmHostBytes(const CompiledScene& plan, const DeviceCapabilities& device, bool spectral, bool downloadsFilm) {
   const FilmLayout& film = plan.film;
   const uint64_t pixels = film.pixelCount();
   // The full-film histogram: counts, colour sums, squared weight sums.
   const uint64_t histogram =
       pixels * (uint64_t(film.bins) + (film.exactColour ? 3 : 0) + (film.weighted() ? 1 : 0)) * sizeof(uint64_t);
   // Held at once at the end: the result's histogram and a downloaded copy
-  // when the film is downloaded, the CPU reference's own counters, and the
-  // Vulkan resolve's per-pixel results.
+  // when the film is downloaded, and either the device's counters, where
+  // they live in host memory, or the resolve's per-pixel results.
   uint64_t bytes = (downloadsFilm || spectral ? 2 * histogram : 0) +
-                   (kind == DeviceKind::Cpu ? film.storedCounterCount() * sizeof(uint64_t)
+                   (device.filmInHostMemory ? film.storedCounterCount() * sizeof(uint64_t)
                                             : film.storedPixelCount() * sizeof(device::ResolvedPixel));
   // The image: RGB, XYZ, E, error.E as floats, and the spectral block.
   bytes += pixels * 8 * sizeof(float) + (spectral ? pixels * film.bins * sizeof(float) : 0);
   return bytes;
 }
 
-void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral,
+void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, const DeviceCapabilities& device, bool spectral,
                          bool downloadsFilm) {
-  const uint64_t needed = filmHostBytes(plan, kind, spectral, downloadsFilm);
+  const uint64_t needed = filmHostBytes(plan, device, spectral, downloadsFilm);
   const uint64_t available = availableHostBytes();
   if (needed > available)
     throw SceneError(fmt::format(
@@ -130,7 +130,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   const CompiledScene& plan = result.plan;
   checkBeamScale(scene, plan, options.beams);
   // Before any film is allocated: a clear refusal, not a bad_alloc mid-render.
-  checkFilmFitsMemory(scene, plan, device.kind(), options.spectral, options.downloadFilm);
+  checkFilmFitsMemory(scene, plan, device.capabilities(), options.spectral, options.downloadFilm);
   std::unique_ptr<Tracer> tracer;
   try {
     tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads,
@@ -141,7 +141,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Devi
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
   if (options.log)
-    options.log(fmt::format("device: {} ({})", result.deviceName, result.deviceKind == DeviceKind::Vulkan ? "Vulkan" : "C++"));
+    options.log(fmt::format("device: {}", result.deviceLabel()));
 
   uint64_t done = 0;
   if (options.resumeFilm) {

@@ -92,8 +92,9 @@ void addSpectralChannels(RenderImage& image, const SpectralHistogram& histogram,
 // (RenderOptions::downloadFilm, or the spectral block), which holds
 // histograms of the whole film on the host; without it only the CPU
 // reference's counters and the image are held.
-uint64_t filmHostBytes(const CompiledScene& plan, DeviceKind kind, bool spectral, bool downloadsFilm = true);
-void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, DeviceKind kind, bool spectral,
+uint64_t filmHostBytes(const CompiledScene& plan, const DeviceCapabilities& device, bool spectral,
+                       bool downloadsFilm = true);
+void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, const DeviceCapabilities& device, bool spectral,
                          bool downloadsFilm = true);
 
 ResolveParameters resolveParametersFor(const Scene& scene, const CompiledScene& plan, uint64_t beams);

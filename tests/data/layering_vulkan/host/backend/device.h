@@ -1,0 +1,3 @@
+#pragma once
+#include <vulkan/vulkan.hpp>
+#include "vulkan/context.h"

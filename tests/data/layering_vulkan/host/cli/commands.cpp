@@ -1,0 +1,2 @@
+#include "backend/device.h"
+#include <vulkan/vulkan.hpp>
