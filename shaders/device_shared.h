@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 namespace spectrace::device {
 using uint = uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
+using vec4 = glm::vec4;
 #define SPECTRACE_CONSTANT constexpr
 #define SPECTRACE_LAYOUT_FN constexpr
 #else
@@ -87,18 +89,24 @@ SPECTRACE_CONSTANT uint kLightLaser = 4;
 SPECTRACE_CONSTANT uint kLightTypeCount = 5;
 SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit per type
 
+// Camera models (what stands before the sensor): one kernel unit per model
+// in shaders/cameras/<model>.h, one host unit in host/camera/<model>_camera.cpp.
+SPECTRACE_CONSTANT uint kCameraBareSensor = 0;
+SPECTRACE_CONSTANT uint kCameraPinhole = 1;
+SPECTRACE_CONSTANT uint kCameraTypeAtRunTime = 0xFFFFFFFFu;  // kSpecCameraType: read constants.cameraType
+
 // Specialisation constant ids. Every pipeline has the workgroup size; the
 // trace pipeline's others fix scene features (the defaults, in
 // trace_beams.comp, are the general pipeline's: decide at run time):
-// a bit per light type present; whether to choose among lights; bare (0) /
-// pinhole (1) / run time (2); exact colour off (0) / on (1) / run time (2);
-// no light aimed (0) / some (1) / run time (2).
+// a bit per light type present; whether to choose among lights; the camera
+// model (kCamera*, or kCameraTypeAtRunTime); exact colour off (0) / on (1) /
+// run time (2); no light aimed (0) / some (1) / run time (2).
 START_BINDING(SpecConstantId)
   kSpecWorkgroupSize = 0,
   kSpecRecordBeams = 1,  // 1: write each beam's (pixel, bin) to the beam records instead of counting it
   kSpecLightTypes = 2,
   kSpecSelectLight = 3,
-  kSpecPinhole = 4,
+  kSpecCameraType = 4,
   kSpecExactColour = 5,
   kSpecAim = 6,
   kSpecHistogramChunks = 7,  // histogram buffers in use; kMaxHistogramChunks + 1: decided at run time
@@ -265,8 +273,9 @@ struct TraceConstants {
   uint lightCount;
   float lambdaMin;          // nm, of the full spectrum
   float binsPerNm;
-  float apertureDistance;   // metres in front of the sensor; 0 = bare sensor
-  float apertureRadiusSq;   // metres^2
+  uint cameraType;          // kCamera*: the camera model (shaders/camera.h)
+  float cameraFrontZ;       // metres: a counted beam comes from beyond this plane (the
+                            // model's entrance; 0: the sensor), where the camera's body ends
   uint pixelsPerChunk;      // histogram chunk size in whole pixels
   uint countersPerPixel;    // countersPerPixelOf(bins, exactColour, weightUnits > 1)
   uint exactColour;         // 1: accumulate per-beam CMF values
@@ -276,7 +285,7 @@ struct TraceConstants {
   uint binOffset;           // first stored bin of the full spectrum
   uint totalBins;           // bins of the full spectrum
   vec3 aimCentre;           // sphere holding every point a counted beam passes: the
-  float aimRadius;          // pinhole's disk, or the bare sensor (metres)
+  float aimRadius;          // camera model's entrance (metres)
   uint weightUnits;         // 1 or kWeightUnitsFractional (see there)
   // The stored pixels: the rectangle of columns [windowX0, windowX0 +
   // windowWidth) and rows [windowY0, windowY0 + windowHeight) that beams can
@@ -293,7 +302,7 @@ struct TraceConstants {
   uint objectPrimitives;
   uint maxBounces;          // surfaces a beam may scatter from before it is dropped
   uint connect;             // 1: connect diffuse vertices to the camera (light tracing)
-  float cameraDepth;        // the camera's body: the box |x| <= half size, 0 <= z <= depth
+  vec4 cameraParams;        // the camera model's own constants (shaders/cameras/<model>.h)
 };
 
 // The film's counter layout, defined only here: each stored pixel owns
@@ -422,7 +431,8 @@ inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
 
 static_assert(sizeof(LightRecord) == 136);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 144);
+static_assert(sizeof(TraceConstants) == 160);
+static_assert(offsetof(TraceConstants, cameraParams) == 140);
 static_assert(sizeof(Primitive) == 48);
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(Material) == 48);

@@ -11,8 +11,8 @@
 #ifndef SPECTRACE_SELECT_LIGHT
 #define SPECTRACE_SELECT_LIGHT (constants.lightCount > 1u)
 #endif
-#ifndef SPECTRACE_PINHOLE
-#define SPECTRACE_PINHOLE(apertureDistance) ((apertureDistance) > 0.0f)
+#ifndef SPECTRACE_CAMERA_TYPE
+#define SPECTRACE_CAMERA_TYPE (constants.cameraType)
 #endif
 #ifndef SPECTRACE_AIM
 #define SPECTRACE_AIM true

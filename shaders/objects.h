@@ -184,21 +184,20 @@ FN vec3 offsetOffSurface(vec3 point, vec3 n) {
 }
 
 // The camera's body, in the camera frame: the box |x| <= half width,
-// |y| <= half height, 0 <= z <= depth (the aperture plane; 0 for a bare
-// sensor, a flat plate). A beam that enters it through the aperture and
+// |y| <= half height, 0 <= z <= cameraFrontZ (its model's front plane: a
+// pinhole's aperture; 0 for a bare sensor, a flat plate). A beam that enters it through the aperture and
 // lands on the sensor is counted; any other beam that meets it is absorbed.
 // Returns the distance to the body (negative: the ray misses it), and
 // whether the beam is counted, at `cell`.
 FN float intersectCamera(vec3 origin, vec3 direction, OUT(bool) counted, OUT(uvec2) cell) {
-  counted = hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
-                      constants.pixelsY, constants.apertureDistance, constants.apertureRadiusSq, cell);
+  counted = hitSensor(origin, direction, cell);
   if (counted) {
-    PRECISE float toFront = (origin.z - constants.apertureDistance) / -direction.z;
+    PRECISE float toFront = (origin.z - constants.cameraFrontZ) / -direction.z;
     return toFront;
   }
   vec3 inverse = inverseDirection(direction);
   vec3 lo = vec3(-constants.sensorHalfSize.x, -constants.sensorHalfSize.y, 0.0f);
-  vec3 hi = vec3(constants.sensorHalfSize.x, constants.sensorHalfSize.y, constants.cameraDepth);
+  vec3 hi = vec3(constants.sensorHalfSize.x, constants.sensorHalfSize.y, constants.cameraFrontZ);
   PRECISE vec3 t0 = (lo - origin) * inverse;
   PRECISE vec3 t1 = (hi - origin) * inverse;
   vec3 nearT = min(t0, t1);

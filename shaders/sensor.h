@@ -1,42 +1,34 @@
-// The camera's side of the kernel: where a beam crosses the sensor (the
-// seed's Camera.computeBeam()) and what a counted beam adds to the film's
-// counters (countBeam), written once for the shader and the CPU reference.
+// The sensor's side of the kernel: which pixel a beam lands in (the seed's
+// Camera.computeBeam(), through the camera's model, camera.h) and what a
+// counted beam adds to the film's counters (countBeam), written once for the
+// shader and the CPU reference.
 #ifndef SPECTRACE_SENSOR_H
 #define SPECTRACE_SENSOR_H
 
 // The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
 // camera frame and looks along +z, so a beam counts only when it travels
-// towards -z from z > 0 (with a pinhole: from beyond the aperture plane and
-// through the aperture disk). Returns the pixel's (column, row), or false for a miss.
-// A beam parallel to the sensor (direction.z == 0) never reaches the
-// division; NaN or infinite hit points fail the bounds tests.
-FN bool hitSensor(vec3 origin, vec3 direction, vec2 halfSize, vec2 pixelsPerMetre, uint pixelsX,
-                  uint pixelsY, float apertureDistance, float apertureRadiusSq, OUT(uvec2) cell) {
+// towards -z from beyond the camera's front plane (the sensor, or a
+// model's entrance) and its model lets it through (camera.h). Returns the
+// pixel's (column, row), or false for a miss. A beam parallel to the
+// sensor (direction.z == 0) never reaches a division; NaN or infinite hit
+// points fail the bounds tests.
+FN bool hitSensor(vec3 origin, vec3 direction, OUT(uvec2) cell) {
   cell = uvec2(0u, 0u);
-  if (!(direction.z < 0.0f) || !(origin.z > apertureDistance)) return false;
-  PRECISE float hx;
-  PRECISE float hy;
-  bool flip = SPECTRACE_PINHOLE(apertureDistance);
-  if (flip) {
-    PRECISE float ta = (origin.z - apertureDistance) / -direction.z;
-    PRECISE float ax = origin.x + ta * direction.x;
-    PRECISE float ay = origin.y + ta * direction.y;
-    if (!(ax * ax + ay * ay <= apertureRadiusSq)) return false;
-    PRECISE float ts = apertureDistance / -direction.z;
-    hx = ax + ts * direction.x;
-    hy = ay + ts * direction.y;
-  } else {
-    PRECISE float t = origin.z / -direction.z;
-    hx = origin.x + t * direction.x;
-    hy = origin.y + t * direction.y;
-  }
+  if (!(direction.z < 0.0f) || !(origin.z > constants.cameraFrontZ)) return false;
+  vec2 onSensor;
+  bool flip;
+  if (!cameraCrossing(origin, direction, onSensor, flip)) return false;
+  vec2 halfSize = constants.sensorHalfSize;
+  vec2 pixelsPerMetre = constants.pixelsPerMetre;
+  float hx = onSensor.x;
+  float hy = onSensor.y;
   if (!(abs(hx) < halfSize.x) || !(abs(hy) < halfSize.y)) return false;
-  // Image columns run along +x (camera right) and rows down from +y; a
-  // pinhole image is inverted on the sensor, so flip it upright.
+  // Image columns run along +x (camera right) and rows down from +y; an
+  // image inverted on the sensor (a pinhole's) is flipped upright.
   PRECISE float fx = flip ? (halfSize.x - hx) * pixelsPerMetre.x : (hx + halfSize.x) * pixelsPerMetre.x;
   PRECISE float fy = flip ? (hy + halfSize.y) * pixelsPerMetre.y : (halfSize.y - hy) * pixelsPerMetre.y;
-  uint column = min(uint(max(fx, 0.0f)), pixelsX - 1u);
-  uint row = min(uint(max(fy, 0.0f)), pixelsY - 1u);
+  uint column = min(uint(max(fx, 0.0f)), constants.pixelsX - 1u);
+  uint row = min(uint(max(fy, 0.0f)), constants.pixelsY - 1u);
   cell = uvec2(column, row);
   return true;
 }

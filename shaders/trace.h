@@ -1,5 +1,5 @@
 // One beam, from its index to the film: emit (emit.h, lights/), transport
-// (transport.h), sensor (sensor.h). Shared by the trace shader and the CPU
+// (transport.h), camera and sensor (camera.h, cameras/, sensor.h). Shared by the trace shader and the CPU
 // reference; the includer provides what kernel_interface.h lists.
 #ifndef SPECTRACE_TRACE_H
 #define SPECTRACE_TRACE_H
@@ -7,6 +7,7 @@
 #include "kernel_features.h"
 #include "beam_math.h"
 #include "emit.h"
+#include "camera.h"
 #include "sensor.h"
 #include "objects.h"
 #include "transport.h"
@@ -34,9 +35,7 @@ FN bool traceBeam(uint64_t beamIndex, INOUT(BeamTally) tally) {
     transportBeam(beamIndex, origin, direction, ratio, lambda, uniformFromWord(spectral.w), tally);
   } else {
     uvec2 cell;
-    bool hit = hitSensor(origin, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
-                         constants.pixelsY, constants.apertureDistance, constants.apertureRadiusSq, cell) &&
-               ratio > 0.0f;
+    bool hit = hitSensor(origin, direction, cell) && ratio > 0.0f;
     if (hit) {
       uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
       float lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));

@@ -16,7 +16,7 @@ layout(constant_id = kSpecRecordBeams) const uint recordBeams = 0u;
 // the general pipeline, which decides everything at run time.
 layout(constant_id = kSpecLightTypes) const uint enabledLightTypes = kAllLightTypes;  // bit per light type
 layout(constant_id = kSpecSelectLight) const uint selectLight = 1u;  // 0: one light, no choice
-layout(constant_id = kSpecPinhole) const uint pinholeMode = 2u;      // 0 bare, 1 pinhole, 2 run time
+layout(constant_id = kSpecCameraType) const uint cameraTypeMode = kCameraTypeAtRunTime;  // kCamera*, or at run time
 layout(constant_id = kSpecExactColour) const uint exactColourMode = 2u;  // 0 off, 1 on, 2 run time
 layout(constant_id = kSpecAim) const uint aimMode = 2u;              // 0 no light aimed, 1 some, 2 run time
 // Always set from the film (not a scene feature).
@@ -30,7 +30,7 @@ layout(constant_id = kSpecObjects) const uint objectsMode = 2u;
 layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
-#define SPECTRACE_PINHOLE(d) (pinholeMode == 2u ? (d) > 0.0f : pinholeMode == 1u)
+#define SPECTRACE_CAMERA_TYPE (cameraTypeMode == kCameraTypeAtRunTime ? constants.cameraType : cameraTypeMode)
 #define SPECTRACE_AIM (aimMode != 0u)
 #define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
 #define SPECTRACE_SQUARED_WEIGHTS ((aimMode != 0u || objectsMode != 0u) && constants.weightUnits != 1u)

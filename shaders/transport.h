@@ -58,31 +58,17 @@ FN vec3 reflected(vec3 direction, vec3 n) {
 
 // Light tracing's camera connection (pbrt-v4's lightpath, Mitsuba 3's
 // ptracer): from a diffuse vertex at `point`, lit from the side `facing`,
-// to a uniform point of the aperture disk (a bare sensor: of the sensor).
-// The beam's flux times the BRDF (rho / pi), the geometry term and the
-// aperture's area is what reaches that point, and it goes on straight to
-// the sensor. Counted when nothing stands in between.
+// to a uniform point of the camera model's entrance (camera.h: a pinhole's
+// disk, a bare sensor's own area). The beam's flux times the BRDF
+// (rho / pi), the geometry term and the entrance's area is what reaches
+// that point, and it goes on straight to the sensor. Counted when nothing
+// stands in between.
 FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float weight, float lambda, uint bin,
                         INOUT(BeamTally) tally) {
-  bool pinhole = SPECTRACE_PINHOLE(constants.apertureDistance);
-  if (!(weight > 0.0f) || !(point.z > constants.apertureDistance)) return;
+  if (!(weight > 0.0f) || !(point.z > constants.cameraFrontZ)) return;
   uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce + 1u);
-  float u = uniformFromWord(words.x);
-  float v = uniformFromWord(words.y);
-  vec3 target;
   float area;
-  if (pinhole) {
-    PRECISE float radius = sqrt(constants.apertureRadiusSq);
-    vec2 disk = sampleDisk(u, v, radius);
-    target = vec3(disk.x, disk.y, constants.apertureDistance);
-    PRECISE float diskArea = 3.14159265358979f * constants.apertureRadiusSq;
-    area = diskArea;
-  } else {
-    PRECISE vec2 onSensor = (vec2(u, v) * 2.0f - 1.0f) * constants.sensorHalfSize;
-    target = vec3(onSensor.x, onSensor.y, 0.0f);
-    PRECISE float sensorArea = 4.0f * constants.sensorHalfSize.x * constants.sensorHalfSize.y;
-    area = sensorArea;
-  }
+  vec3 target = cameraConnectionPoint(uniformFromWord(words.x), uniformFromWord(words.y), area);
   PRECISE vec3 toTarget = target - point;
   PRECISE float distanceSq = dot3(toTarget, toTarget);
   PRECISE float distance = sqrt(distanceSq);
@@ -91,9 +77,7 @@ FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing
   float cosCamera = -direction.z;
   if (!(cosSurface > 0.0f) || !(cosCamera > 0.0f)) return;
   uvec2 cell;
-  if (!hitSensor(point, direction, constants.sensorHalfSize, constants.pixelsPerMetre, constants.pixelsX,
-                 constants.pixelsY, constants.apertureDistance, constants.apertureRadiusSq, cell))
-    return;
+  if (!hitSensor(point, direction, cell)) return;
   ObjectHit blocker;
   vec3 start = offsetOffSurface(point, facing);
   PRECISE float reach = distance * 0.99999f;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "camera/pinhole_camera.h"
 #include "kernel/beam_kernel.h"
 #include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
@@ -62,7 +63,7 @@ Scene aimScene(LightType type, bool pinhole) {
   Scene scene = testing::bareSensorScene(0.02, 0.02, 16, 16, 16);
   scene.lights = {lightOfType(type)};
   if (pinhole) {
-    scene.camera.pinhole = Pinhole{0.01, 0.001};
+    scene.camera.model = pinholeModel({0.01, 0.001});
     scene.lights[0].position.z += 0.01;
   }
   return scene;

@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "camera/pinhole_camera.h"
 #include "camera/camera_frame.h"
 #include "kernel/beam_kernel.h"
 #include "support/cpu_trace.h"
@@ -490,7 +491,7 @@ TEST(GeometryNumericsAngles, LightsBehindTheSensorNeverCount) {
                  disk,
                  rect};
   Scene pinhole = bare;
-  pinhole.camera.pinhole = Pinhole{0.01, 0.002};
+  pinhole.camera.model = pinholeModel({0.01, 0.002});
   // Between the sensor and the aperture, and in the aperture plane.
   pinhole.lights.push_back(pointLight({0.0, 0.0, 0.005}, 1.0, makeLineSpd(500.0)));
   pinhole.lights.push_back(pointLight({0.0, 0.0, 0.01}, 1.0, makeLineSpd(500.0)));
@@ -522,12 +523,12 @@ TEST(GeometryNumericsAngles, PinholeOfRadius1e7Metres) {
   constexpr double kAperture = 0.0078125, kRadius = 1e-7;
   for (const Case c : {Case{std::ldexp(1.0, -23), 2'000'000}, Case{std::ldexp(1.0, -20), 4'000'000}}) {
     Scene scene = bareSensor(0.024, 0.024, 16, 16);
-    scene.camera.pinhole = Pinhole{kAperture, kRadius};
+    scene.camera.model = pinholeModel({kAperture, kRadius});
     scene.lights = {pointLight({0.0, 0.0, kAperture + c.heightAboveAperture}, 1.0, makeLineSpd(550.0))};
     const CompiledScene plan = compileScene(scene, 25);
-    const double d = double(plan.device.lights[0].position.z) - double(plan.device.constants.apertureDistance);
+    const double d = double(plan.device.lights[0].position.z) - double(plan.device.constants.cameraFrontZ);
     ASSERT_EQ(d, c.heightAboveAperture) << "the light height should be exact in float";
-    const double r2 = double(plan.device.constants.apertureRadiusSq);
+    const double r2 = double(plan.device.constants.cameraParams.x);
     const double root = std::sqrt(d * d + r2);
     const double p = aimGain(plan) * r2 / (2.0 * root * (root + d));
     const double n = double(c.beams);

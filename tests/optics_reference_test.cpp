@@ -30,6 +30,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
+#include "camera/pinhole_camera.h"
 #include "backend/cpu_tracer.h"
 #include "backend/device.h"
 #include "backend/vulkan_tracer.h"
@@ -118,7 +119,7 @@ struct SensorRect {
 SensorRect pixelOnSensor(const Camera& camera, int col, int row) {
   const double pw = camera.sensorWidthM / camera.pixelsX, ph = camera.sensorHeightM / camera.pixelsY;
   const double hx = 0.5 * camera.sensorWidthM, hy = 0.5 * camera.sensorHeightM;
-  if (camera.pinhole) return {hx - (col + 1) * pw, hx - col * pw, -hy + row * ph, -hy + (row + 1) * ph};
+  if (pinholeOf(camera)) return {hx - (col + 1) * pw, hx - col * pw, -hy + row * ph, -hy + (row + 1) * ph};
   return {-hx + col * pw, -hx + (col + 1) * pw, hy - (row + 1) * ph, hy - row * ph};
 }
 
@@ -180,7 +181,7 @@ struct PlateScene {
 PlateScene plateScene() {
   PlateScene p;
   p.scene = testing::bareSensorScene(0.02, 0.02, 8, 8, 4);
-  p.scene.camera.pinhole = Pinhole{0.02, 0.009};
+  p.scene.camera.model = pinholeModel({0.02, 0.009});
   p.light = {0.02, 0.003, 0.028};
   p.plateZ = 0.04;
   p.rho = 0.8;
@@ -205,7 +206,7 @@ PlateScene plateScene() {
 // spaced angles; the integrand is smooth (the plate covers every line).
 std::vector<double> plateExpected(const PlateScene& p, int n) {
   const Camera& camera = p.scene.camera;
-  const double d = camera.pinhole->distanceM, ra = camera.pinhole->radiusM;
+  const double d = pinholeOf(camera)->distanceM, ra = pinholeOf(camera)->radiusM;
   const Quadrature q = gaussLegendre01(n);
   const int angles = 4 * n;
   std::vector<double> out;
@@ -765,7 +766,7 @@ INSTANTIATE_TEST_SUITE_P(Devices, OpticsReference, ::testing::Values(DeviceChoic
 // contributions) must be identical.
 Scene everyObjectScene() {
   Scene scene = testing::bareSensorScene(0.036, 0.024, 36, 24, 32);
-  scene.camera.pinhole = Pinhole{0.02, 0.006};
+  scene.camera.model = pinholeModel({0.02, 0.006});
   const Camera& c = scene.camera;
   scene.lights = {testing::pointLight(toWorld(c, {0.0, 0.024, 0.06}), 2.0, *cieIlluminant("D65"))};
   using testing::namedObject;

@@ -14,6 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "camera/pinhole_camera.h"
 #include "film/film_state.h"
 #include "session/output_guard.h"
 #include "session/session.h"
@@ -65,7 +66,7 @@ struct OutputFaults : ::testing::Test {
   RenderJob job(const std::string& name, uint64_t batches, std::vector<std::string>& warnings) const {
     RenderJob job;
     job.scene = testing::bareSensorScene(0.02, 0.02, 16, 12, 32);
-    job.scene.camera.pinhole = Pinhole{0.03, 0.002};
+    job.scene.camera.model = pinholeModel({0.03, 0.002});
     Light rect = testing::surfaceLight(LightType::Rect, {0.0, 0.0, 0.5}, {0.0, 0.0, -1.0}, 3.0, *cieIlluminant("F11"));
     rect.sizeM = {0.2, 0.1};
     job.scene.lights = {rect};

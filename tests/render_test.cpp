@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "camera/pinhole_camera.h"
 #include "support/cpu_trace.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
@@ -142,11 +143,11 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
   laser.lights = {beam};  // one light, one type
   scenes.push_back(laser);
   Scene pinhole = smallScene();
-  pinhole.camera.pinhole = Pinhole{0.002, 0.001};
+  pinhole.camera.model = pinholeModel({0.002, 0.001});
   for (auto& l : pinhole.lights) l.position.z += 0.01;
   scenes.push_back(pinhole);
   Scene aimedPanel = bareSensorScene(0.01, 0.01, 8, 8, 16);
-  aimedPanel.camera.pinhole = Pinhole{0.005, 0.0005};
+  aimedPanel.camera.model = pinholeModel({0.005, 0.0005});
   Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.1}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
   panel.radiusM = 0.02;
   aimedPanel.lights = {panel};  // aimed, with fractional weights
@@ -228,7 +229,7 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
   std::vector<Case> cases;
   {
     Scene s = bareSensorScene(0.036, 0.024, 36, 24, 16);
-    s.camera.pinhole = Pinhole{0.05, 0.0005};
+    s.camera.model = pinholeModel({0.05, 0.0005});
     Light panel = surfaceLight(LightType::Rect, {0.05, 0.03, 0.5}, glm::normalize(glm::dvec3(0.1, 0.0, -1.0)), 1.0,
                                *cieIlluminant("D65"));
     panel.sizeM = {0.06, 0.04};
@@ -246,7 +247,7 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
   }
   {
     Scene s = bareSensorScene(0.02, 0.02, 16, 16, 16);
-    s.camera.pinhole = Pinhole{0.01, 0.002};
+    s.camera.model = pinholeModel({0.01, 0.002});
     Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.0105}, glm::normalize(glm::dvec3(0.0, 1.0, -0.2)), 1.0,
                               *cieIlluminant("D65"));
     disk.radiusM = 0.003;  // reaches below the aperture plane: no bound, the whole sensor

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "camera/pinhole_camera.h"
 #include "session/session.h"
 #include "support/test_scenes.h"
 
@@ -22,7 +23,7 @@ fs::path tempDir() {
 RenderJob lampJob(const fs::path& output, uint64_t beams) {
   RenderJob job;
   job.scene = testing::bareSensorScene(0.02, 0.02, 16, 12, 32);
-  job.scene.camera.pinhole = Pinhole{0.03, 0.002};
+  job.scene.camera.model = pinholeModel({0.03, 0.002});
   Light rect = testing::surfaceLight(LightType::Rect, {0.0, 0.0, 0.5}, {0.0, 0.0, -1.0}, 3.0, *cieIlluminant("F11"));
   rect.sizeM = {0.2, 0.1};
   job.scene.lights = {rect};

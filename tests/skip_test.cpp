@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "camera/pinhole_camera.h"
 #include "film/develop.h"
 #include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
@@ -40,7 +41,7 @@ Scene sceneWithUnreachableLights(bool pinhole) {
   scene.lights = {disk, behind, pointLight({-0.003, 0.004, 0.006}, 0.5, *cieIlluminant("LED-B3")), facingAway, spotAway,
                   laserMisses, outOfRange};
   if (pinhole) {
-    scene.camera.pinhole = Pinhole{0.004, 0.003};
+    scene.camera.model = pinholeModel({0.004, 0.003});
     for (auto& l : scene.lights) l.position.z += 0.004;
   }
   return scene;

@@ -10,7 +10,7 @@ enum SpecialisedFeature : uint32_t {
   kSpecialiseNone = 0,
   kSpecialiseLightTypes = 1u << 0,   // code for absent light types compiled out
   kSpecialiseLightChoice = 1u << 1,  // no light choice with one light
-  kSpecialisePinhole = 1u << 2,      // bare or pinhole branch fixed
+  kSpecialiseCameraType = 1u << 2,   // the camera model's branch fixed
   kSpecialiseExactColour = 1u << 3,  // per-beam colour path fixed on or off
   kSpecialiseAim = 1u << 4,          // aiming code compiled out when no light is aimed
   // The light, interval, CMF and alias tables read from uniform buffers

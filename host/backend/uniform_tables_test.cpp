@@ -1,5 +1,6 @@
 // Where the trace reads its tables: the one check (uniformTableLayout) and
 // the uniform path against the storage path on the device.
+#include "camera/pinhole_camera.h"
 #include "backend/uniform_tables.h"
 
 #include <gtest/gtest.h>
@@ -57,7 +58,7 @@ TEST(UniformTables, PaddingAppendsZeroElementsOnly) {
 // The uniform path counts every beam where the storage path does.
 TEST(UniformTables, UniformAndStorageTablesGiveTheSameFilm) {
   Scene scene = bareSensorScene(0.01, 0.01, 8, 8, 16);
-  scene.camera.pinhole = Pinhole{0.005, 0.0005};
+  scene.camera.model = pinholeModel({0.005, 0.0005});
   Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.1}, {0, 0, -1}, 1.0, *cieIlluminant("D65"));
   panel.radiusM = 0.02;
   Light lamp = surfaceLight(LightType::Rect, {0.01, 0.0, 0.08}, {0, 0, -1}, 2.0, *cieIlluminant("F11"));

@@ -95,7 +95,8 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
   auto pick = [&](SpecialisedFeature f, uint32_t scene, uint32_t general) { return (features & f) ? scene : general; };
   return {{device::kSpecLightTypes, pick(kSpecialiseLightTypes, types, device::kAllLightTypes)},
           {device::kSpecSelectLight, pick(kSpecialiseLightChoice, plan.device.lights.size() > 1 ? 1u : 0u, 1u)},
-          {device::kSpecPinhole, pick(kSpecialisePinhole, plan.device.constants.apertureDistance > 0.0f ? 1u : 0u, 2u)},
+          {device::kSpecCameraType,
+           pick(kSpecialiseCameraType, plan.device.constants.cameraType, device::kCameraTypeAtRunTime)},
           {device::kSpecExactColour, profileStage <= device::kProfileStageCounting
                                          ? 0u
                                          : pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "camera/pinhole_camera.h"
 #include "render/renderer.h"
 #include "scene/scene_builders.h"
 
@@ -77,7 +78,7 @@ OpticsRow rowOf(const std::string& scene, const std::string& variant, const Rend
 // rate that shows the mesh's cost, not a light that mostly misses.)
 Scene meshScene(uint64_t triangles) {
   Scene scene = bareSensorScene(0.024, 0.024, 128, 128, SpectrumRange{}.bins);
-  scene.camera.pinhole = Pinhole{0.04, 0.001};
+  scene.camera.model = pinholeModel({0.04, 0.001});
   // At the sphere's centre, 1.04 m away; asin(0.3 / 1.04) = 16.8 degrees: the whole sphere.
   Light light = surfaceLight(LightType::Spot, {0.6, 0.6, 0.4}, glm::normalize(glm::dvec3(-0.6, -0.6, 0.6)), 10.0,
                              makeLineSpd(550.0), "550 nm");

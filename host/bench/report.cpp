@@ -263,7 +263,7 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
   if (!report.specialisation.empty()) {
     md << "## Pipelines specialised to the scene\n\n";
     md << "Specialisation constants compile out the light types a scene lacks, the choice among lights when "
-          "there is one, the pinhole or bare-sensor branch, the exact-colour path and the aiming code. Device time of the trace "
+          "there is one, the camera model's branch, the exact-colour path and the aiming code. Device time of the trace "
           "pass, each the least of 3 runs taken in turn with the other variants, all in this run; the results are "
           "bit-identical "
           "(`Render.SpecialisedPipelineMatchesGeneralBitForBit`).\n\n";

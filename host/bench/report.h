@@ -28,7 +28,7 @@ struct SpecialisationRow {
   std::vector<double> featureSeconds;  // one per SpecialisedFeature bit, alone
 };
 // The names of the SpecialisedFeature bits, in bit order.
-inline const char* const kSpecialisedFeatureNames[] = {"light types", "light choice", "pinhole", "exact colour", "aim"};
+inline const char* const kSpecialisedFeatureNames[] = {"light types", "light choice", "camera model", "exact colour", "aim"};
 
 // Storing the full spectrum against only the bins the lights reach.
 struct TrimRow {

@@ -197,7 +197,6 @@ ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
 void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device) {
   device::TraceConstants& c = device.constants;
   c.maxBounces = scene.render.maxBounces;
-  c.cameraDepth = scene.camera.pinhole ? float(scene.camera.pinhole->distanceM) : 0.0f;
   if (scene.objects.empty()) return;
   const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
   std::vector<PlacedPrimitive> placed;

@@ -12,7 +12,7 @@ namespace spectrace {
 
 // Fills device.primitives (in the BVH's order), bvhNodes, materials and
 // reflectance, and the object constants (objectPrimitives, maxBounces,
-// connect, cameraDepth). options.connect: camera connections at diffuse
+// connect). options.connect: camera connections at diffuse
 // vertices (kept only when some object is diffuse); options.bruteForceObjects:
 // one leaf instead of the BVH.
 void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device);

@@ -1,6 +1,7 @@
 // Scene objects in the compiler: which shortcuts each kind of object turns
 // off (compile/shortcuts.h), the primitives and their BVH, the reflectance
 // tables, and the film's weights under camera connections.
+#include "camera/pinhole_camera.h"
 #include "compile/compile_objects.h"
 
 #include <gtest/gtest.h>
@@ -29,7 +30,7 @@ SceneObject plate(MaterialType type, std::vector<double> nm = {550.0}, std::vect
 
 Scene pointLightScene() {
   Scene scene = bareSensorScene(0.036, 0.024, 36, 24, 16);
-  scene.camera.pinhole = Pinhole{0.05, 0.001};
+  scene.camera.model = pinholeModel({0.05, 0.001});
   scene.lights = {pointLight({0.0, 0.0, 1.0}, 1.0, *cieIlluminant("D65"))};
   return scene;
 }

@@ -19,12 +19,11 @@
 namespace spectrace {
 namespace {
 
-// The sphere every counted beam passes through: the pinhole's disk, or the
-// bare sensor (its half diagonal).
+// The sphere every counted beam passes through (the camera model's
+// entrance), widened by the kernel's slack.
 AimTarget aimTarget(const Camera& camera) {
-  const double slack = double(SPECTRACE_AIM_SLACK);
-  if (camera.pinhole) return {{0.0, 0.0, camera.pinhole->distanceM}, camera.pinhole->radiusM, slack};
-  return {{0.0, 0.0, 0.0}, 0.5 * std::hypot(camera.sensorWidthM, camera.sensorHeightM), slack};
+  const EntranceSphere entrance = camera.model->entranceSphere(camera);
+  return {entrance.centre, entrance.radius, double(SPECTRACE_AIM_SLACK)};
 }
 
 std::string sceneName(const Scene& scene) {
@@ -167,10 +166,7 @@ void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
   c.lightCount = uint32_t(device.lights.size());
   c.lambdaMin = float(range.minNm);
   c.binsPerNm = float(range.bins / (range.maxNm - range.minNm));
-  if (camera.pinhole) {
-    c.apertureDistance = float(camera.pinhole->distanceM);
-    c.apertureRadiusSq = float(camera.pinhole->radiusM * camera.pinhole->radiusM);
-  }
+  camera.model->pack(c);
   const Observer& observer = observerByName(scene.observer);
   for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
     device.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));

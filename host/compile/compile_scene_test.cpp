@@ -1,4 +1,5 @@
 // The trace plan's aiming decisions and weights, against closed forms.
+#include "camera/pinhole_camera.h"
 #include "compile/compile_scene.h"
 
 #include <gtest/gtest.h>
@@ -17,7 +18,7 @@ namespace {
 
 Scene pinholeScene(double distanceM, double radiusM) {
   Scene scene = bareSensorScene(0.036, 0.024, 36, 24, 16);
-  scene.camera.pinhole = Pinhole{distanceM, radiusM};
+  scene.camera.model = pinholeModel({distanceM, radiusM});
   return scene;
 }
 
@@ -132,8 +133,8 @@ TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
   for (int trial = 0; trial < 200; ++trial) {
     Scene scene = bareSensorScene(0.036, 0.024, 48, 32, 8);
     const bool pinhole = trial % 2 == 0;
-    if (pinhole) scene.camera.pinhole = Pinhole{uniform(0.005, 0.05), uniform(1e-4, 3e-3)};
-    const double base = pinhole ? scene.camera.pinhole->distanceM : 0.0;
+    if (pinhole) scene.camera.model = pinholeModel({uniform(0.005, 0.05), uniform(1e-4, 3e-3)});
+    const double base = pinhole ? pinholeOf(scene.camera)->distanceM : 0.0;
     const LightType type = LightType(trial / 2 % 5);
     const glm::dvec3 centre(uniform(-0.05, 0.05), uniform(-0.05, 0.05), base + uniform(0.002, 0.3));
     const glm::dvec3 direction = glm::normalize(glm::dvec3(uniform(-0.5, 0.5), uniform(-0.5, 0.5), -1.0));

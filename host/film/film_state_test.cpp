@@ -1,6 +1,7 @@
 // The exact render state: it round-trips bit for bit, refuses damaged files
 // and states that do not belong together, and shards of [0, N) merge into
 // exactly the film of one render of N beams, on either device or both.
+#include "camera/pinhole_camera.h"
 #include "film/film_state.h"
 
 #include <gtest/gtest.h>
@@ -32,7 +33,7 @@ fs::path tempFile(const std::string& name) {
 // (counts, colour sums, squared weights) is in use.
 Scene weightedScene() {
   Scene scene = testing::bareSensorScene(0.01, 0.01, 12, 10, 24);
-  scene.camera.pinhole = Pinhole{0.02, 0.001};
+  scene.camera.model = pinholeModel({0.02, 0.001});
   Light disk = testing::surfaceLight(LightType::Disk, {0.0, 0.0, 0.3}, {0.0, 0.0, -1.0}, 2.0, *cieIlluminant("D65"));
   disk.radiusM = 0.05;
   scene.lights = {disk};

@@ -34,21 +34,12 @@ std::string unreachableBecause(const Light& light, const LightFrame& frame, cons
   const double extent = light.radiusM * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z));
   if (std::string behind = behindPlaneBecause(position.z + extent, camera); !behind.empty()) return behind;
   if (!(axis.z < 0.0)) return "its beam points away from the camera";
-  // The beam's footprint in the plane z = planeZ: the disk's centre moved
-  // along the axis, inside a circle of radius R / |axis.z| (the ellipse's
-  // semi-major axis).
-  const double planeZ = camera.pinhole ? camera.pinhole->distanceM : 0.0;
-  const double t = (position.z - planeZ) / -axis.z;
+  // The beam's footprint in the camera's front plane: the disk's centre
+  // moved along the axis, inside a circle of radius R / |axis.z| (the
+  // ellipse's semi-major axis).
+  const double t = (position.z - camera.model->frontZ()) / -axis.z;
   const glm::dvec2 centre(position.x + t * axis.x, position.y + t * axis.y);
-  const double reach = light.radiusM / -axis.z;
-  if (camera.pinhole) {
-    if (!(glm::length(centre) < reach + camera.pinhole->radiusM)) return "its beam misses the pinhole";
-  } else {
-    const glm::dvec2 half(0.5 * camera.sensorWidthM, 0.5 * camera.sensorHeightM);
-    const glm::dvec2 outside = glm::max(glm::abs(centre) - half, glm::dvec2(0.0));
-    if (!(glm::length(outside) < reach)) return "its beam misses the sensor";
-  }
-  return "";
+  return camera.model->beamMissesBecause(camera, centre, light.radiusM / -axis.z);
 }
 
 double aim(const Light& light, const LightFrame& frame, const AimTarget& target, device::LightRecord& record) {

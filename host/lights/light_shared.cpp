@@ -48,9 +48,7 @@ void checkLength(const LightFieldCheck& check, const std::string& key, double va
 }
 
 std::string behindPlaneBecause(double highestZ, const Camera& camera) {
-  const double planeZ = camera.pinhole ? camera.pinhole->distanceM : 0.0;
-  const char* plane = camera.pinhole ? "the pinhole's aperture plane" : "the sensor plane";
-  if (!(highestZ > planeZ)) return fmt::format("it lies behind {}", plane);
+  if (!(highestZ > camera.model->frontZ())) return fmt::format("it lies behind {}", camera.model->frontName());
   return "";
 }
 

@@ -25,8 +25,9 @@ struct LightFrame {
   glm::dvec3 bitangent;
 };
 
-// The sphere every counted beam passes through: the pinhole's disk, or the
-// bare sensor (its half diagonal). See lights/light_shared.h on aiming.
+// The sphere every counted beam passes through: the camera model's
+// entrance (camera.h, EntranceSphere), widened by the kernel's slack. See
+// lights/light_shared.h on aiming.
 struct AimTarget {
   glm::dvec3 centre;
   double radius;
@@ -37,13 +38,9 @@ struct AimTarget {
 
 // Where a traced light can put beams on the sensor, conservatively: its
 // emission points (corners of a convex region holding them, in the camera
-// frame), and for a collimated light (a laser) its beam.
-struct LightReach {
-  std::vector<glm::dvec3> corners;
-  bool collimated = false;
-  glm::dvec3 centre{0.0}, axis{0.0};
-  double radius = 0.0;
-};
+// frame), and for a collimated light (a laser) its beam; the camera's model
+// turns it into a region of the sensor (pixel windows).
+using LightReach = EmitterReach;
 
 // How a unit's `validate` reports a problem: throws SceneError naming the
 // light's field (`key` relative to the light, e.g. "cone_deg", "size_m/0").

@@ -10,6 +10,7 @@
 #include <glm/vec2.hpp>
 
 #include "camera/camera_frame.h"
+#include "camera/pinhole_camera.h"
 
 namespace spectrace {
 namespace {
@@ -295,7 +296,7 @@ const GaussLegendreRule& gaussLegendre(int n) {
 SensorRect pixelRect(const Camera& camera, int column, int row) {
   const double w = camera.sensorWidthM, h = camera.sensorHeightM;
   const double px = camera.pixelsX, py = camera.pixelsY;
-  if (camera.pinhole && camera.pinhole->distanceM > 0.0) {
+  if (const Pinhole* pinhole = pinholeOf(camera); pinhole && pinhole->distanceM > 0.0) {
     // Upright image: column from (w/2 − x), row from (y + h/2).
     return {w * (0.5 - (column + 1) / px), w * (0.5 - column / px), h * (row / py - 0.5), h * ((row + 1) / py - 0.5)};
   }
@@ -448,8 +449,9 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
     return std::nullopt;
   }
   const int n = std::max(options.quadratureNodes, 1);
-  const bool pinhole = camera.pinhole && camera.pinhole->distanceM > 0.0;
-  const double zMin = pinhole ? camera.pinhole->distanceM : 0.0;  // beams must start beyond this plane
+  const Pinhole* aperture = pinholeOf(camera);
+  const bool pinhole = aperture && aperture->distanceM > 0.0;
+  const double zMin = pinhole ? aperture->distanceM : 0.0;  // beams must start beyond this plane
 
   ExactImage image;
   image.width = camera.pixelsX;
@@ -539,8 +541,8 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
       if (light.type != LightType::Rect) return std::nullopt;
       kinds.push_back("rect light through a pinhole");
       PinholeRect ph_{};
-      ph_.d = camera.pinhole->distanceM;
-      ph_.a = camera.pinhole->radiusM;
+      ph_.d = aperture->distanceM;
+      ph_.a = aperture->radiusM;
       ph_.zr = pos.z;
       ph_.centre = {pos.x, pos.y};
       rectAxes(light, frame, axis, ph_.u, ph_.v);

@@ -31,6 +31,7 @@
 #include <openssl/evp.h>
 
 #include "json/input_file.h"
+#include "camera/camera_types.h"
 #include "json/json_fields.h"
 #include "lights/light_type.h"
 #include "scene/object_field.h"
@@ -87,8 +88,17 @@ SpectrumRange parseSpectrum(const jf::Source& c, const Json& v, const std::strin
   return s;
 }
 
+// "pinhole, ..." : the keys of the camera models.
+std::string cameraModelKeys() {
+  std::string keys;
+  for (const CameraTypeUnit* unit : cameraTypeUnits()) keys += (keys.empty() ? "" : ", ") + std::string(unit->key);
+  return keys;
+}
+
 Camera parseCamera(const jf::Source& c, const Json& v, const std::string& p) {
-  checkObject(c, v, p, {"position", "look_at", "up", "sensor", "pinhole", "exposure_s"}, "camera");
+  Keys keys = {"position", "look_at", "up", "sensor", "exposure_s"};
+  for (const CameraTypeUnit* unit : cameraTypeUnits()) keys.push_back(unit->key);
+  checkObject(c, v, p, keys, "camera");
   Camera cam;
   cam.position = jf::getPoint(c, require(c, v, p, "position"), child(p, "position"), kMaxCoordinateM);
   cam.lookAt = jf::getPoint(c, require(c, v, p, "look_at"), child(p, "look_at"), kMaxCoordinateM);
@@ -106,13 +116,16 @@ Camera parseCamera(const jf::Source& c, const Json& v, const std::string& p) {
       cam.pixelsY = static_cast<int>(jf::getInt(c, (*x)[1], child(pp, size_t(1)), 1, kMaxPixelsPerAxis));
     }
   }
-  if (auto* h = find(v, "pinhole")) {
-    std::string hp = child(p, "pinhole");
-    checkObject(c, *h, hp, {"distance_m", "radius_m"}, "camera.pinhole");
-    Pinhole ph;
-    ph.distanceM = jf::getLength(c, require(c, *h, hp, "distance_m"), child(hp, "distance_m"), kMaxCoordinateM);
-    ph.radiusM = jf::getLength(c, require(c, *h, hp, "radius_m"), child(hp, "radius_m"), kMaxCoordinateM);
-    cam.pinhole = ph;
+  // At most one model before the sensor (none: a bare sensor).
+  const CameraTypeUnit* chosen = nullptr;
+  for (const CameraTypeUnit* unit : cameraTypeUnits()) {
+    const Json* m = find(v, unit->key);
+    if (!m) continue;
+    if (chosen)
+      c.fail(child(p, unit->key), fmt::format("a camera has one of {} in front of its sensor, not both \"{}\" and \"{}\"",
+                                              cameraModelKeys(), chosen->key, unit->key));
+    chosen = unit;
+    cam.model = unit->parse(c, *m, child(p, unit->key));
   }
   if (auto* x = find(v, "exposure_s")) cam.exposureS = jf::getPositive(c, *x, child(p, "exposure_s"));
   return cam;

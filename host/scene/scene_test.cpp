@@ -1,3 +1,4 @@
+#include "camera/pinhole_camera.h"
 #include "scene/scene.h"
 
 #include <atomic>
@@ -148,9 +149,9 @@ TEST_F(SceneTest, ExampleParsesWithTheRightValues) {
   EXPECT_EQ(s.camera.sensorHeightM, 0.024);
   EXPECT_EQ(s.camera.pixelsX, 360);
   EXPECT_EQ(s.camera.pixelsY, 240);
-  ASSERT_TRUE(s.camera.pinhole.has_value());
-  EXPECT_EQ(s.camera.pinhole->distanceM, 0.05);
-  EXPECT_EQ(s.camera.pinhole->radiusM, 0.0005);
+  ASSERT_TRUE((pinholeOf(s.camera) != nullptr));
+  EXPECT_EQ(pinholeOf(s.camera)->distanceM, 0.05);
+  EXPECT_EQ(pinholeOf(s.camera)->radiusM, 0.0005);
   EXPECT_EQ(s.camera.exposureS, 1.0);
   EXPECT_EQ(s.render.beams, 100000000u);
   EXPECT_EQ(s.render.seed, 1u);
@@ -224,7 +225,7 @@ TEST_F(SceneTest, DefaultsForOptionalSections) {
   EXPECT_EQ(s.camera.sensorHeightM, 0.024);
   EXPECT_EQ(s.camera.pixelsX, 360);
   EXPECT_EQ(s.camera.pixelsY, 240);
-  EXPECT_FALSE(s.camera.pinhole.has_value());
+  EXPECT_FALSE((pinholeOf(s.camera) != nullptr));
   EXPECT_EQ(s.camera.exposureS, 1.0);
   ASSERT_EQ(s.lights.size(), 1u);
   EXPECT_EQ(s.lights[0].label, "/lights/0");

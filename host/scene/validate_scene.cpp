@@ -56,6 +56,19 @@ std::string SceneChecker::got(const std::string& ptr, const glm::dvec3& fallback
 
 namespace {
 
+// The camera model's view of the checker: keys relative to /camera.
+class CameraChecker final : public CameraFieldCheck {
+ public:
+  explicit CameraChecker(const SceneChecker& c) : c_(c) {}
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
+    c_.fail("/camera/" + key, what);
+  }
+  std::string got(const std::string& key, double fallback) const override { return c_.got("/camera/" + key, fallback); }
+
+ private:
+  const SceneChecker& c_;
+};
+
 // A point within the world bounds.
 void checkPoint(const SceneChecker& c, const std::string& ptr, const glm::dvec3& p, const std::string& note = {}) {
   if (!finite(p)) c.fail(ptr, "must be finite", note);
@@ -108,10 +121,7 @@ void validateCamera(const Camera& camera, const SceneChecker& c) {
   if (total > kMaxPixelsTotal)
     c.fail("/camera/sensor/pixels", fmt::format("too many pixels: {} x {} = {} (at most {})", camera.pixelsX,
                                                 camera.pixelsY, total, kMaxPixelsTotal));
-  if (camera.pinhole) {
-    checkLength(c, "/camera/pinhole/distance_m", camera.pinhole->distanceM);
-    checkLength(c, "/camera/pinhole/radius_m", camera.pinhole->radiusM);
-  }
+  camera.model->validate(CameraChecker(c));
   checkPositive(c, "/camera/exposure_s", camera.exposureS);
 }
 

@@ -39,7 +39,7 @@ void checkCompiled(const Scene& scene, const CompiledScene& compiled) {
   fuzz::require(compiled.film.pixelAreaM2 > 0.0, "film.pixelAreaM2 is not positive");
   fuzz::requireFinite(compiled.irradiancePerCount(scene.render.beams), "irradiancePerCount(render.beams)");
   for (float x : {c.sensorHalfSize.x, c.sensorHalfSize.y, c.pixelsPerMetre.x, c.pixelsPerMetre.y, c.lambdaMin,
-                  c.binsPerNm, c.apertureDistance, c.apertureRadiusSq, c.aimRadius})
+                  c.binsPerNm, c.cameraFrontZ, c.cameraParams.x, c.cameraParams.y, c.cameraParams.z, c.cameraParams.w, c.aimRadius})
     fuzz::requireFinite(x, "a trace constant");
   for (const LightSummary& s : compiled.summaries) {
     fuzz::requireFinite(s.tracedPowerW, fmt::format("{}: tracedPowerW", s.label));

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <string>
 
+#include "camera/pinhole_camera.h"
 #include "scene/scene_builders.h"
 #include "spectrum/spd.h"
 #include "vulkan/context.h"
@@ -41,7 +42,7 @@ inline Scene everyLightTypeScene(bool pinhole) {
   laser.radiusM = 0.002;
   scene.lights = {pointLight({0.0, 0.0, 0.02}, 1.0, *cieIlluminant("D65")), spot, disk, rect, laser};
   if (pinhole) {
-    scene.camera.pinhole = Pinhole{0.01, 0.002};
+    scene.camera.model = pinholeModel({0.01, 0.002});
     for (auto& l : scene.lights) l.position.z += 0.02;
   }
   return scene;

@@ -1,0 +1,28 @@
+#pragma once
+// The kinds of camera model (camera.h): one unit each,
+// camera/<kind>_camera.cpp; cameraTypeUnits() in camera_types.cpp is the
+// only table of them.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "json/json_fields.h"
+
+namespace spectrace {
+
+struct CameraTypeUnit {
+  // The key of the camera object that holds this model ("pinhole"); the
+  // bare sensor, which has none, is not in the table.
+  const char* key;
+  json_fields::Keys keys;  // the keys inside that object
+  // Reads the object `v` at `ptr` (types only: value ranges are the model's
+  // validate).
+  std::shared_ptr<const CameraModel> (*parse)(const json_fields::Source& c, const json_fields::Json& v,
+                                              const std::string& ptr);
+};
+
+// Every camera model with a key of its own, in kernel id order.
+const std::vector<const CameraTypeUnit*>& cameraTypeUnits();
+
+}  // namespace spectrace

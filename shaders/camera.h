@@ -1,0 +1,31 @@
+// The camera's models, dispatched like emit.h's lights: one kernel unit per
+// model in cameras/<model>.h (host/camera/<model>_camera.cpp is its host
+// side), chosen by constants.cameraType or, in a specialised pipeline, by
+// the constant SPECTRACE_CAMERA_TYPE fixes.
+#ifndef SPECTRACE_CAMERA_H
+#define SPECTRACE_CAMERA_H
+
+#include "cameras/bare_sensor.h"
+#include "cameras/pinhole.h"
+
+// Where a beam from beyond the camera's front plane, travelling towards -z,
+// crosses the sensor plane, if the model lets it through; `flipped`: the
+// model's image is inverted on the sensor, so the pixel mapping turns it
+// upright.
+FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool) flipped) {
+  uint type = SPECTRACE_CAMERA_TYPE;
+  flipped = type == kCameraPinhole;
+  if (type == kCameraPinhole) return pinholeCrossing(origin, direction, onSensor);
+  return bareSensorCrossing(origin, direction, onSensor);
+}
+
+// A camera connection's end (light tracing: pbrt-v4's Camera::SampleWi,
+// Mitsuba 3's Sensor::sample_direction) from two uniforms: a point of the
+// model's entrance, uniform over it, and the entrance's area.
+FN vec3 cameraConnectionPoint(float u, float v, OUT(float) area) {
+  uint type = SPECTRACE_CAMERA_TYPE;
+  if (type == kCameraPinhole) return pinholeConnectionPoint(u, v, area);
+  return bareSensorConnectionPoint(u, v, area);
+}
+
+#endif  // SPECTRACE_CAMERA_H
