@@ -82,6 +82,41 @@ TEST_P(Resume, AStateOfAnotherRenderIsRefused) {
   EXPECT_THROW(session.render(otherStart), FilmStateError);
 }
 
+// A state's fingerprint holds every compile option (namedCompileOptions
+// over kCompileOptionFields, whose size a static_assert ties to
+// CompileOptions): flipping any one of them changes it, so a resume or
+// merge under the other value is refused.
+TEST(ResumeFingerprint, HoldsEveryCompileOption) {
+  const RenderJob job = lampJob("x.exr", 1000);
+  const FilmFingerprint base = jobFingerprint(job);
+  ASSERT_EQ(base.compileOptions.size(), std::size(kCompileOptionFields));
+  for (const CompileOptionField& field : kCompileOptionFields) {
+    RenderJob changed = job;
+    changed.options.plan.*field.member = !(job.options.plan.*field.member);
+    const FilmFingerprint other = jobFingerprint(changed);
+    EXPECT_EQ(other.compileOptions.at(field.name), changed.options.plan.*field.member) << field.name;
+    EXPECT_NE(other.compileOptions.at(field.name), base.compileOptions.at(field.name)) << field.name;
+    EXPECT_NE(fingerprintDifference(base, other), "") << field.name;
+  }
+}
+
+TEST(ResumeFingerprint, AStateOfAnAnalogRenderIsRefusedForAConnectedOne) {
+  const Session session(DeviceChoice::Cpu);
+  const fs::path dir = tempDir();
+  RenderJob analog = lampJob(dir / "analog.exr", 20'000);
+  analog.options.plan.connect = false;
+  analog.state = dir / "analog.state";
+  session.render(analog);
+  RenderJob connected = lampJob(dir / "connected.exr", 40'000);
+  connected.resume = readFilmState(analog.state);
+  try {
+    session.render(connected);
+    ADD_FAILURE() << "resumed a connected render from an analog one's state";
+  } catch (const FilmStateError& e) {
+    EXPECT_NE(std::string(e.what()).find("compile_options/connect"), std::string::npos) << e.what();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Devices, Resume, ::testing::Values(DeviceChoice::Gpu, DeviceChoice::Cpu),
                          [](const auto& info) { return info.param == DeviceChoice::Gpu ? "gpu" : "cpu"; });
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -279,6 +280,28 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
     developColourFromBins(scene, compiled);
   filmConstants(compiled.film, compiled.device.constants);
   return compiled;
+}
+
+}  // namespace spectrace
+
+namespace spectrace {
+
+std::map<std::string, bool> namedCompileOptions(const CompileOptions& options) {
+  std::map<std::string, bool> named;
+  for (const CompileOptionField& field : kCompileOptionFields) named[field.name] = options.*field.member;
+  return named;
+}
+
+CompileOptions compileOptionsNamed(const std::map<std::string, bool>& named) {
+  CompileOptions options;
+  for (const auto& [name, value] : named) {
+    const CompileOptionField* found = nullptr;
+    for (const CompileOptionField& field : kCompileOptionFields)
+      if (name == field.name) found = &field;
+    if (!found) throw std::invalid_argument(fmt::format("unknown compile option '{}'", name));
+    options.*found->member = value;
+  }
+  return options;
 }
 
 }  // namespace spectrace

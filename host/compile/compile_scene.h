@@ -6,6 +6,8 @@
 // Skipping and aiming are passes, each taken only when its precondition
 // holds (compile/shortcuts.h).
 #include <cstdint>
+#include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,31 @@ struct CompileOptions {
   // them all (brute force through the same kernel code).
   bool bruteForceObjects = false;
 };
+
+// Every compile option by the name a render state records it under (so a
+// state's fingerprint holds the options as a whole, and a merge or resume
+// compiles the scene the same way). A new option goes here, or the
+// static_assert fails: the struct holds bools only, one byte each.
+struct CompileOptionField {
+  const char* name;
+  bool CompileOptions::*member;
+};
+inline constexpr CompileOptionField kCompileOptionFields[] = {
+    {"exact_colour", &CompileOptions::exactColour},
+    {"colour_from_bins", &CompileOptions::colourFromBins},
+    {"skip_unreachable_lights", &CompileOptions::skipUnreachableLights},
+    {"trim_spectrum", &CompileOptions::trimSpectrum},
+    {"trim_pixels", &CompileOptions::trimPixels},
+    {"aim", &CompileOptions::aim},
+    {"connect", &CompileOptions::connect},
+    {"brute_force_objects", &CompileOptions::bruteForceObjects},
+};
+static_assert(sizeof(CompileOptions) == std::size(kCompileOptionFields) * sizeof(bool),
+              "every CompileOptions field needs its row in kCompileOptionFields");
+// The options by name, and back (a name missing from `named` keeps its
+// default; an unknown name throws std::invalid_argument).
+std::map<std::string, bool> namedCompileOptions(const CompileOptions& options);
+CompileOptions compileOptionsNamed(const std::map<std::string, bool>& named);
 
 // Throws SceneError (with the scene file's name) for scenes that cannot be
 // traced, e.g. when no light has power inside the spectrum range.

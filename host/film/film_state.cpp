@@ -20,7 +20,9 @@ namespace {
 using nlohmann::json;
 
 constexpr char kMagic[8] = {'S', 'P', 'C', 'T', 'R', 'S', 'T', 'A'};
-constexpr uint32_t kVersion = 1;
+// 2: the fingerprint's compile_options object; 1 (still read): four of the
+// options as fields of their own.
+constexpr uint32_t kVersion = 2;
 constexpr size_t kPrefixBytes = 16;  // magic, version, header length
 constexpr size_t kDigestBytes = 32;  // SHA-256
 
@@ -48,13 +50,10 @@ json toJson(const FilmFingerprint& f) {
           {"weight_units", f.weightUnits},
           {"seed", f.seed},
           {"specialisation", f.specialisation},
-          {"aimed", f.aimed},
-          {"skip_unreachable_lights", f.skipUnreachableLights},
-          {"trim_spectrum", f.trimSpectrum},
-          {"trim_pixels", f.trimPixels}};
+          {"compile_options", f.compileOptions}};
 }
 
-FilmFingerprint fingerprintFromJson(const json& j) {
+FilmFingerprint fingerprintFromJson(const json& j, uint32_t version) {
   FilmFingerprint f;
   f.sceneFile = j.at("scene_file").get<std::string>();
   f.sceneSha256 = j.at("scene_sha256").get<std::string>();
@@ -73,10 +72,22 @@ FilmFingerprint fingerprintFromJson(const json& j) {
   f.weightUnits = j.at("weight_units").get<uint32_t>();
   f.seed = j.at("seed").get<uint64_t>();
   f.specialisation = j.at("specialisation").get<uint32_t>();
-  f.aimed = j.at("aimed").get<bool>();
-  f.skipUnreachableLights = j.at("skip_unreachable_lights").get<bool>();
-  f.trimSpectrum = j.at("trim_spectrum").get<bool>();
-  f.trimPixels = j.at("trim_pixels").get<bool>();
+  if (version >= 2) {
+    for (const auto& [name, value] : j.at("compile_options").items()) f.compileOptions[name] = value.get<bool>();
+  } else {
+    // Version 1 recorded four options and the film's colour; the other two
+    // options it did not record are taken at their defaults (a version 1
+    // state of a --no-connect render is refused on resume by its weight
+    // units, not silently mixed).
+    f.compileOptions["aim"] = j.at("aimed").get<bool>();
+    f.compileOptions["skip_unreachable_lights"] = j.at("skip_unreachable_lights").get<bool>();
+    f.compileOptions["trim_spectrum"] = j.at("trim_spectrum").get<bool>();
+    f.compileOptions["trim_pixels"] = j.at("trim_pixels").get<bool>();
+    f.compileOptions["exact_colour"] = f.exactColour || f.colourFromBins;
+    f.compileOptions["colour_from_bins"] = f.colourFromBins;
+    f.compileOptions["connect"] = true;
+    f.compileOptions["brute_force_objects"] = false;
+  }
   return f;
 }
 
@@ -115,7 +126,8 @@ uint64_t FilmState::beams() const {
 }
 
 FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFile, const std::string& sceneSha256,
-                              const std::string& observer, uint64_t seed, uint32_t specialisation, bool aimed) {
+                              const std::string& observer, uint64_t seed, uint32_t specialisation,
+                              const std::map<std::string, bool>& compileOptions) {
   FilmFingerprint f;
   f.sceneFile = sceneFile;
   f.sceneSha256 = sceneSha256;
@@ -133,7 +145,7 @@ FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFi
   f.weightUnits = film.weightUnits;
   f.seed = seed;
   f.specialisation = specialisation;
-  f.aimed = aimed;
+  f.compileOptions = compileOptions;
   return f;
 }
 
@@ -191,7 +203,8 @@ FilmState readFilmState(const std::filesystem::path& file) {
     throw fail("checksum mismatch: the file is truncated or corrupted");
   uint32_t prefix[2];
   std::memcpy(prefix, bytes.data() + sizeof kMagic, sizeof prefix);
-  if (prefix[0] != kVersion) throw fail(fmt::format("format version {} (this spectrace reads {})", prefix[0], kVersion));
+  if (prefix[0] < 1 || prefix[0] > kVersion)
+    throw fail(fmt::format("format version {} (this spectrace reads 1 to {})", prefix[0], kVersion));
   if (kPrefixBytes + size_t(prefix[1]) > body) throw fail("the header runs past the end of the file");
   FilmState state;
   size_t offset = kPrefixBytes + prefix[1];
@@ -202,7 +215,7 @@ FilmState readFilmState(const std::filesystem::path& file) {
                                       if (depth > json_fields::kMaxJsonDepth) throw fail("bad header: it nests too deep");
                                       return true;
                                     });
-    state.fingerprint = fingerprintFromJson(header.at("fingerprint"));
+    state.fingerprint = fingerprintFromJson(header.at("fingerprint"), prefix[0]);
     for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
     const FilmFingerprint& f = state.fingerprint;
     // The header's film shape sizes the arrays: checked against the bytes
@@ -236,7 +249,16 @@ std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprin
   const json fa = toJson(a), fb = toJson(b);
   for (auto it = fa.begin(); it != fa.end(); ++it) {
     if (it.key() == "scene_file") continue;  // the same scene may be named by two paths; its hash decides
-    if (fb.at(it.key()) != it.value()) return fmt::format("{}: {} against {}", it.key(), it.value().dump(), fb.at(it.key()).dump());
+    const json& other = fb.at(it.key());
+    if (it.value().is_object() && other.is_object()) {  // compile_options: name the option
+      for (const auto& key : {it.value(), other})
+        for (auto option = key.begin(); option != key.end(); ++option)
+          if (it.value().value(option.key(), json()) != other.value(option.key(), json()))
+            return fmt::format("{}/{}: {} against {}", it.key(), option.key(),
+                               it.value().value(option.key(), json()).dump(), other.value(option.key(), json()).dump());
+      continue;
+    }
+    if (other != it.value()) return fmt::format("{}: {} against {}", it.key(), it.value().dump(), other.dump());
   }
   return "";
 }

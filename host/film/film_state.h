@@ -6,6 +6,7 @@
 // the arrays' lengths), the uint64 arrays, and a SHA-256 of all before it.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,10 +43,10 @@ struct FilmFingerprint {
   uint32_t weightUnits = 1;
   uint64_t seed = 0;
   uint32_t specialisation = 0;  // SpecialisedFeature bits of the trace pipeline
-  bool aimed = true;            // aimed sampling (changes the beams' weights)
-  // The other shortcuts it was compiled with, so a merge can compile the
-  // scene the same way (compile/compile_scene.h, CompileOptions).
-  bool skipUnreachableLights = true, trimSpectrum = true, trimPixels = true;
+  // Every option the scene was compiled with, by name
+  // (compile/compile_scene.h, namedCompileOptions), so a merge or resume
+  // compiles it the same way and no option can be left out.
+  std::map<std::string, bool> compileOptions;
 };
 
 struct FilmState {
@@ -58,7 +59,8 @@ struct FilmState {
 
 // The fingerprint of a film traced with `seed` from a scene file.
 FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFile, const std::string& sceneSha256,
-                              const std::string& observer, uint64_t seed, uint32_t specialisation, bool aimed);
+                              const std::string& observer, uint64_t seed, uint32_t specialisation,
+                              const std::map<std::string, bool>& compileOptions);
 
 // Writes atomically (temporary file, fsync, rename). Throws FilmStateError.
 void writeFilmState(const std::filesystem::path& file, const FilmState& state);

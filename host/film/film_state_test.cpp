@@ -1,7 +1,6 @@
 // The exact render state: it round-trips bit for bit, refuses damaged files
 // and states that do not belong together, and shards of [0, N) merge into
 // exactly the film of one render of N beams, on either device or both.
-#include "camera/pinhole_camera.h"
 #include "film/film_state.h"
 
 #include <gtest/gtest.h>
@@ -10,10 +9,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
 #include <openssl/evp.h>
 
 #include "backend/cpu_tracer.h"
 #include "backend/vulkan_tracer.h"
+#include "camera/pinhole_camera.h"
 #include "compile/compile_scene.h"
 #include "render/renderer.h"
 #include "support/test_scenes.h"
@@ -44,7 +45,7 @@ FilmState stateOf(const CompiledScene& plan, Tracer& tracer, uint64_t first, uin
   tracer.clear();
   tracer.trace(first, count);
   FilmState state;
-  state.fingerprint = fingerprintOf(plan.film, "scene.json", "abc123", "CIE1931_2", seed, 31, true);
+  state.fingerprint = fingerprintOf(plan.film, "scene.json", "abc123", "CIE1931_2", seed, 31, namedCompileOptions({}));
   state.ranges = {{first, count}};
   state.histogram = tracer.download();
   return state;
@@ -136,6 +137,76 @@ TEST(FilmState, HeaderClaimingAHugeFilmIsRefusedBeforeAllocating) {
   } catch (const FilmStateError& e) {
     EXPECT_NE(std::string(e.what()).find("more values than the file holds"), std::string::npos) << e.what();
   }
+}
+
+// The file with its header replaced by `header` and its version by
+// `version`, padded and signed as writeFilmState does.
+std::string withHeader(const std::string& bytes, const nlohmann::json& header, uint32_t version) {
+  uint32_t oldLength = 0;
+  std::memcpy(&oldLength, bytes.data() + 12, 4);
+  std::string text = header.dump();
+  while ((16 + text.size()) % 8 != 0) text += ' ';
+  std::string out = bytes.substr(0, 8);
+  const uint32_t prefix[2] = {version, uint32_t(text.size())};
+  out.append(reinterpret_cast<const char*>(prefix), sizeof prefix);
+  out += text;
+  out += bytes.substr(16 + oldLength, bytes.size() - 32 - 16 - oldLength);
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_Digest(out.data(), out.size(), digest, &length, EVP_sha256(), nullptr);
+  out.append(reinterpret_cast<const char*>(digest), length);
+  return out;
+}
+
+// Version 1 recorded four compile options as fields of their own; a state
+// written then still reads, with those options and the rest at their
+// defaults, and merges with the same render's version 2 state.
+TEST(FilmState, VersionOneStatesStillRead) {
+  FilmState state;
+  state.fingerprint = fingerprintOf(FilmLayout{}, "scene.json", "abc", "CIE1931_2", 3, 31, namedCompileOptions({}));
+  state.fingerprint.pixelsX = state.fingerprint.pixelsY = state.fingerprint.bins = 1;
+  state.fingerprint.exactColour = state.fingerprint.colourFromBins = false;
+  state.fingerprint.weightUnits = 1;
+  state.ranges = {{0, 10}};
+  state.histogram = SpectralHistogram(1, 1, 1);
+  const fs::path file = tempFile("version1.state");
+  writeFilmState(file, state);
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  uint32_t headerLength = 0;
+  std::memcpy(&headerLength, bytes.data() + 12, 4);
+  nlohmann::json header = nlohmann::json::parse(bytes.substr(16, headerLength));
+  nlohmann::json& f = header["fingerprint"];
+  ASSERT_TRUE(f.contains("compile_options"));
+  f.erase("compile_options");
+  f["aimed"] = true;
+  f["skip_unreachable_lights"] = true;
+  f["trim_spectrum"] = false;
+  f["trim_pixels"] = true;
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << withHeader(bytes, header, 1);
+  const FilmState read = readFilmState(file);
+  EXPECT_EQ(read.fingerprint.compileOptions.at("trim_spectrum"), false);
+  EXPECT_EQ(read.fingerprint.compileOptions.at("aim"), true);
+  EXPECT_EQ(read.fingerprint.compileOptions.at("connect"), true);
+  CompileOptions expected;
+  expected.trimSpectrum = false;
+  expected.exactColour = read.fingerprint.exactColour || read.fingerprint.colourFromBins;
+  expected.colourFromBins = read.fingerprint.colourFromBins;
+  EXPECT_EQ(read.fingerprint.compileOptions, namedCompileOptions(expected));
+}
+
+// Two fingerprints that differ in one compile option: the refusal names it.
+TEST(FilmState, ADifferentCompileOptionIsNamed) {
+  CompileOptions analog;
+  analog.connect = false;
+  FilmState a, b;
+  a.fingerprint = fingerprintOf(FilmLayout{}, "s.json", "abc", "CIE1931_2", 1, 31, namedCompileOptions({}));
+  b.fingerprint = fingerprintOf(FilmLayout{}, "s.json", "abc", "CIE1931_2", 1, 31, namedCompileOptions(analog));
+  EXPECT_EQ(fingerprintDifference(a.fingerprint, b.fingerprint), "compile_options/connect: true against false");
+  EXPECT_EQ(fingerprintDifference(a.fingerprint, a.fingerprint), "");
 }
 
 TEST(FilmState, StatesOfOtherScenesSeedsOrOverlappingBeamsAreRefused) {

@@ -93,12 +93,8 @@ void prepareFolder(const std::filesystem::path& output) {
 FilmFingerprint jobFingerprint(const RenderJob& job) {
   const RenderOptions& o = job.options;
   const CompiledScene plan = compileScene(job.scene, job.seedValue(), o.plan);
-  FilmFingerprint f = fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256,
-                                    job.scene.observer, job.seedValue(), o.specialisedFeatures, o.plan.aim);
-  f.skipUnreachableLights = o.plan.skipUnreachableLights;
-  f.trimSpectrum = o.plan.trimSpectrum;
-  f.trimPixels = o.plan.trimPixels;
-  return f;
+  return fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256, job.scene.observer,
+                       job.seedValue(), o.specialisedFeatures, namedCompileOptions(o.plan));
 }
 
 namespace {
@@ -347,8 +343,11 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   job.beams = state.beams();
   job.options.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
   job.options.specialisedFeatures = f.specialisation;
-  job.options.plan = CompileOptions{f.exactColour || f.colourFromBins, f.colourFromBins, f.skipUnreachableLights,
-                                    f.trimSpectrum, f.trimPixels, f.aimed};
+  try {
+    job.options.plan = compileOptionsNamed(f.compileOptions);
+  } catch (const std::invalid_argument& e) {
+    throw FilmStateError(fmt::format("the state's compile options cannot be used: {}", e.what()));
+  }
   if (std::string field = fingerprintDifference(f, jobFingerprint(job)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);
@@ -371,7 +370,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   removeStaleTemporaries(output);
   try {
     writeImage(output, result.image,
-               renderMetadata(job.scene, result.deviceLabel(), f.aimed, f.seed, job.options.firstBeam,
+               renderMetadata(job.scene, result.deviceLabel(), job.options.plan.aim, f.seed, job.options.firstBeam,
                               result.beamsTraced, wallSeconds),
                png);
   } catch (const ImageIoError& e) {
