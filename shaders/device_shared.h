@@ -53,7 +53,7 @@ START_BINDING(TraceBinding)
   kBindingPrimitives = 12,   // Primitive, in the BVH's leaf order
   kBindingBvhNodes = 13,     // BvhNode, depth first, the root at 0
   kBindingMaterials = 14,    // Material
-  kBindingReflectance = 15   // float nodes of the materials' reflectance tables
+  kBindingSceneData = 15     // the scene data: 32-bit words, offset-addressed (below)
 END_BINDING();
 START_BINDING(ResolveBinding)
   kBindingResolveConstants = 0,
@@ -185,13 +185,20 @@ struct BvhNode {
 SPECTRACE_CONSTANT uint kBvhStackSize = 32u;
 SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
 
+// The scene data: one buffer of 32-bit words where a unit (a light, camera
+// or material type) keeps parameters and tables of any length, addressed by
+// offsets its own record holds, read through readSceneWord (a float as its
+// bits, readSceneFloat), so a new table needs no binding of its own. Built by
+// DeviceScene::appendSceneData (host/compile/compile_scene.h). The
+// materials' reflectance tables are its first tables.
+
 SPECTRACE_CONSTANT uint kMaterialAbsorber = 0;
 SPECTRACE_CONSTANT uint kMaterialDiffuse = 1;
 SPECTRACE_CONSTANT uint kMaterialMirror = 2;
 SPECTRACE_CONSTANT uint kMaterialDielectric = 3;
 // A material. Reflectance (diffuse, mirror): linear between nodes
-// reflectance[first + i] at lambda0 + i / nodesPerNm, holding its end values
-// outside. Dielectric: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in micrometres
+// readSceneFloat(reflectanceFirst + i) at lambda0 + i / nodesPerNm, holding
+// its end values outside. Dielectric: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in micrometres
 // (a constant ior n is B = (n^2 - 1, 0, 0), C = 0).
 struct Material {
   uint type;
@@ -229,6 +236,10 @@ struct LightRecord {
   vec3 aimTangent;        // point/spot: completes the cone's frame
   vec3 aimBitangent;
   uint spectralAliasBits;
+  // The type's own parameters and tables beyond param0/param1, in the scene
+  // data (words [dataFirst, dataFirst + dataWords)); 0, 0: none.
+  uint dataFirst;
+  uint dataWords;
 };
 
 // One interval of a light's piecewise-linear SPD, restricted to the
@@ -303,6 +314,7 @@ struct TraceConstants {
   uint maxBounces;          // surfaces a beam may scatter from before it is dropped
   uint connect;             // 1: connect diffuse vertices to the camera (light tracing)
   vec4 cameraParams;        // the camera model's own constants (shaders/cameras/<model>.h)
+  uint cameraDataFirst;     // its tables in the scene data, if it has any
 };
 
 // The film's counter layout, defined only here: each stored pixel owns
@@ -421,7 +433,7 @@ inline constexpr BindingSlot kTraceBindings[] = {
     {kBindingPrimitives, 1},
     {kBindingBvhNodes, 1},
     {kBindingMaterials, 1},
-    {kBindingReflectance, 1}};
+    {kBindingSceneData, 1}};
 inline constexpr BindingSlot kCeilingBindings[] = {{kBindingCeilingCdf, 1}, {kBindingCeilingHistogram, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},
@@ -429,10 +441,11 @@ inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1}
                                                    {kBindingResolveHistogram, kMaxHistogramChunks}};
 inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
 
-static_assert(sizeof(LightRecord) == 136);
+static_assert(sizeof(LightRecord) == 144);
 static_assert(sizeof(SpectralInterval) == 24);
 static_assert(sizeof(TraceConstants) == 160);
 static_assert(offsetof(TraceConstants, cameraParams) == 140);
+static_assert(offsetof(TraceConstants, cameraDataFirst) == 156);
 static_assert(sizeof(Primitive) == 48);
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(Material) == 48);

@@ -10,7 +10,7 @@
 //   Primitive readPrimitive(uint primitive)   scene objects (transport.h)
 //   BvhNode readBvhNode(uint node)
 //   Material readMaterial(uint material)
-//   float readReflectance(uint node)
+//   uint readSceneWord(uint word)             the scene data (device_shared.h)
 //   void addCount(uint chunk, uint counter, uint64_t amount)
 //                                             adds to one film counter
 // GLSL gets the prototypes below, so a missing function fails at the
@@ -32,7 +32,7 @@ concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
   { k.readPrimitive(i) } -> std::same_as<Primitive>;
   { k.readBvhNode(i) } -> std::same_as<BvhNode>;
   { k.readMaterial(i) } -> std::same_as<Material>;
-  { k.readReflectance(i) } -> std::same_as<float>;
+  { k.readSceneWord(i) } -> std::same_as<uint32_t>;
   { k.addCount(i, i, amount) };
 };
 }  // namespace spectrace::device
@@ -45,7 +45,7 @@ vec3 readCmf(uint node);
 Primitive readPrimitive(uint primitive);
 BvhNode readBvhNode(uint node);
 Material readMaterial(uint material);
-float readReflectance(uint node);
+uint readSceneWord(uint word);
 void addCount(uint chunk, uint counter, uint64_t amount);
 #endif
 

@@ -6,6 +6,7 @@
 
 #include "kernel_features.h"
 #include "beam_math.h"
+#include "scene_data.h"
 #include "emit.h"
 #include "camera.h"
 #include "sensor.h"

@@ -90,8 +90,8 @@ layout(set = 0, binding = kBindingBvhNodes, scalar) readonly buffer BvhBlock {
 layout(set = 0, binding = kBindingMaterials, scalar) readonly buffer MaterialBlock {
   Material materials[];
 };
-layout(set = 0, binding = kBindingReflectance, scalar) readonly buffer ReflectanceBlock {
-  float reflectance[];
+layout(set = 0, binding = kBindingSceneData, scalar) readonly buffer SceneDataBlock {
+  uint sceneData[];
 };
 layout(set = 0, binding = kBindingTraceStats, scalar) buffer TraceStatsBlock {
   TraceStats stats;
@@ -123,7 +123,7 @@ vec3 readCmf(uint i) {
 Primitive readPrimitive(uint i) { return primitives[i]; }
 BvhNode readBvhNode(uint i) { return bvhNodes[i]; }
 Material readMaterial(uint i) { return materials[i]; }
-float readReflectance(uint i) { return reflectance[i]; }
+uint readSceneWord(uint i) { return sceneData[i]; }
 // Constant indices only: no non-uniform descriptor indexing needed. With
 // one chunk there is no switch: on lavapipe each case of a divergent switch
 // costs a pass over the lanes.

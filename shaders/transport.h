@@ -20,8 +20,8 @@ FN float reflectanceAt(Material m, float lambda) {
   float last = float(m.reflectanceCount - 1u);
   float clamped = min(max(x, 0.0f), last);
   uint node = min(uint(clamped), m.reflectanceCount > 1u ? m.reflectanceCount - 2u : 0u);
-  float a = readReflectance(m.reflectanceFirst + node);
-  float b = m.reflectanceCount > 1u ? readReflectance(m.reflectanceFirst + node + 1u) : a;
+  float a = readSceneFloat(m.reflectanceFirst + node);
+  float b = m.reflectanceCount > 1u ? readSceneFloat(m.reflectanceFirst + node + 1u) : a;
   PRECISE float t = clamped - float(node);
   PRECISE float value = a + (b - a) * t;
   return value;

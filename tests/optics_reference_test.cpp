@@ -699,7 +699,7 @@ TEST(OpticsReferenceMesh, KernelNormalsOfAClosedMeshPointOutwards) {
   const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
   const glm::vec3 localCentre(frame.pointToLocal(centre));
   device::BeamKernel kernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns);
-  kernel.setObjects(plan.device.primitives, plan.device.bvhNodes, plan.device.materials, plan.device.reflectance);
+  kernel.setObjects(plan.device.primitives, plan.device.bvhNodes, plan.device.materials, plan.device.data.words());
   ASSERT_EQ(plan.device.primitives.size(), 8u);
   int inward = 0;
   for (const device::Primitive& p : plan.device.primitives) {

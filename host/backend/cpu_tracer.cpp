@@ -205,7 +205,7 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
 device::BeamKernel CpuTracer::beamKernel(std::span<uint64_t> counters) const {
   const DeviceScene& scene = plan_.device;
   device::BeamKernel kernel(scene.constants, scene.lights, scene.intervals, scene.aliasColumns, scene.cmfTable, counters);
-  kernel.setObjects(scene.primitives, scene.bvhNodes, scene.materials, scene.reflectance);
+  kernel.setObjects(scene.primitives, scene.bvhNodes, scene.materials, scene.data.words());
   return kernel;
 }
 

@@ -173,14 +173,14 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
   const uint64_t objectBytes = std::max({plan.device.primitives.size() * sizeof(device::Primitive),
                                           plan.device.bvhNodes.size() * sizeof(device::BvhNode),
                                           plan.device.materials.size() * sizeof(device::Material),
-                                          plan.device.reflectance.size() * sizeof(float)});
+                                          plan.device.data.words().size() * sizeof(uint32_t)});
   if (objectBytes > maxStorageBufferRange)
     throw SceneError(fmt::format(
-        "/objects: the objects' {} primitives, {} BVH nodes, {} materials and {} reflectance nodes need {} bytes in "
+        "/objects: the objects' {} primitives, {} BVH nodes, {} materials and {} words of scene data need {} bytes in "
         "one storage buffer, more than the {} bytes of maxStorageBufferRange of {}; use fewer triangles or objects, "
         "or --device cpu",
         plan.device.primitives.size(), plan.device.bvhNodes.size(), plan.device.materials.size(),
-        plan.device.reflectance.size(), objectBytes, maxStorageBufferRange, deviceName));
+        plan.device.data.words().size(), objectBytes, maxStorageBufferRange, deviceName));
   const uint64_t filmBytes = plan.film.storedCounterCount() * sizeof(uint64_t);
   if (deviceLocalHeapBytes > 0 && filmBytes > deviceLocalHeapBytes)
     throw SceneError(fmt::format(
@@ -240,7 +240,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       primitives_(uploadedBuffer(*buffers_, context, "primitives", plan.device.primitives)),
       bvhNodes_(uploadedBuffer(*buffers_, context, "bvh nodes", plan.device.bvhNodes)),
       materials_(uploadedBuffer(*buffers_, context, "materials", plan.device.materials)),
-      reflectance_(uploadedBuffer(*buffers_, context, "reflectance", plan.device.reflectance)),
+      sceneData_(uploadedBuffer(*buffers_, context, "scene data", plan.device.data.words())),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
@@ -270,7 +270,7 @@ VulkanTracer::~VulkanTracer() {
   buffers_->giveBack("primitives", std::move(primitives_));
   buffers_->giveBack("bvh nodes", std::move(bvhNodes_));
   buffers_->giveBack("materials", std::move(materials_));
-  buffers_->giveBack("reflectance", std::move(reflectance_));
+  buffers_->giveBack("scene data", std::move(sceneData_));
   buffers_->giveBack("trace stats", std::move(stats_));
   for (size_t c = 0; c < histogramChunks_.size(); ++c)
     buffers_->giveBack(fmt::format("histogram {}", c), std::move(histogramChunks_[c]));
@@ -292,7 +292,7 @@ void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Bu
   pipeline.bindBuffer(device::kBindingPrimitives, 0, primitives_);
   pipeline.bindBuffer(device::kBindingBvhNodes, 0, bvhNodes_);
   pipeline.bindBuffer(device::kBindingMaterials, 0, materials_);
-  pipeline.bindBuffer(device::kBindingReflectance, 0, reflectance_);
+  pipeline.bindBuffer(device::kBindingSceneData, 0, sceneData_);
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.

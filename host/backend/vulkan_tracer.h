@@ -118,7 +118,7 @@ class VulkanTracer final : public Tracer {
   vk_util::Buffer primitives_;
   vk_util::Buffer bvhNodes_;
   vk_util::Buffer materials_;
-  vk_util::Buffer reflectance_;
+  vk_util::Buffer sceneData_;
   vk_util::Buffer stats_;  // TraceStats
   std::vector<uint64_t> histogramChunkBytes_;  // the used part of each chunk (a reused one may be larger)
   std::vector<vk_util::Buffer> histogramChunks_;

@@ -17,7 +17,7 @@ class BareSensorModel final : public CameraModel {
  public:
   const char* name() const override { return ""; }
   void validate(const CameraFieldCheck&) const override {}
-  void pack(device::TraceConstants& c) const override {
+  void pack(device::TraceConstants& c, SceneData&) const override {
     c.cameraType = device::kCameraBareSensor;
     c.cameraFrontZ = 0.0f;
   }

@@ -16,6 +16,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "device_data/scene_data.h"
 #include "device_shared.h"
 
 namespace spectrace {
@@ -64,8 +65,9 @@ class CameraModel {
   virtual const char* name() const = 0;
   // Its value checks; the scene's are validateScene's.
   virtual void validate(const CameraFieldCheck& check) const = 0;
-  // The kernel's camera constants: cameraType, cameraFrontZ, cameraParams.
-  virtual void pack(device::TraceConstants& constants) const = 0;
+  // The kernel's camera constants: cameraType, cameraFrontZ, cameraParams,
+  // and any tables appended to the scene data (cameraDataFirst).
+  virtual void pack(device::TraceConstants& constants, SceneData& data) const = 0;
   // The plane a counted beam comes from beyond (camera frame z: the aperture
   // plane; 0: the sensor), and its name in messages.
   virtual double frontZ() const = 0;

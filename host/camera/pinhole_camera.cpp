@@ -31,7 +31,7 @@ class PinholeModel final : public CameraModel {
     checkLength(check, "pinhole/radius_m", pinhole_.radiusM);
   }
   // cameraParams.x: the aperture's radius squared.
-  void pack(device::TraceConstants& c) const override {
+  void pack(device::TraceConstants& c, SceneData&) const override {
     c.cameraType = device::kCameraPinhole;
     c.cameraFrontZ = float(pinhole_.distanceM);
     c.cameraParams = glm::vec4(float(pinhole_.radiusM * pinhole_.radiusM), 0.0f, 0.0f, 0.0f);

@@ -122,19 +122,19 @@ void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material,
   }
 }
 
-device::Material deviceMaterial(const SurfaceMaterial& material, std::vector<float>& reflectance) {
+device::Material deviceMaterial(const SurfaceMaterial& material, DeviceScene& device) {
   device::Material m{};
   m.type = uint32_t(material.type);
-  m.reflectanceFirst = uint32_t(reflectance.size());
   m.reflectanceCount = 1;
   if (material.type == MaterialType::Diffuse || material.type == MaterialType::Mirror) {
     const ReflectanceTable table = reflectanceTable(material);
     m.reflectanceCount = uint32_t(table.values.size());
     m.reflectanceLambda0 = table.lambda0;
     m.reflectanceNodesPerNm = table.nodesPerNm;
-    reflectance.insert(reflectance.end(), table.values.begin(), table.values.end());
+    m.reflectanceFirst = device.data.append(std::span<const float>(table.values));
   } else {
-    reflectance.push_back(0.0f);
+    const float none = 0.0f;
+    m.reflectanceFirst = device.data.append(std::span<const float>(&none, 1));
   }
   m.sellmeierB = glm::vec3(float(material.sellmeierB[0]), float(material.sellmeierB[1]), float(material.sellmeierB[2]));
   m.sellmeierC = glm::vec3(float(material.sellmeierC[0]), float(material.sellmeierC[1]), float(material.sellmeierC[2]));
@@ -203,7 +203,7 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
   bool anyDiffuse = false;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
-    device.materials.push_back(deviceMaterial(object.material, device.reflectance));
+    device.materials.push_back(deviceMaterial(object.material, device));
     anyDiffuse = anyDiffuse || object.material.type == MaterialType::Diffuse;
     placeShape(object.shape, frame, uint32_t(i), placed);
   }

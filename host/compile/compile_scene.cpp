@@ -95,7 +95,7 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
       record.axis = toFloat(local.axis);
       record.tangent = toFloat(local.tangent);
       record.bitangent = toFloat(local.bitangent);
-      unit.pack(light, record);
+      unit.pack(light, record, compiled.device.data);
       if (aim) summary.largestWeight = unit.aim(light, local, target, record);
       summary.aimed = record.aimed != 0;
       device.lights.push_back(record);
@@ -167,7 +167,7 @@ void cameraConstants(const Scene& scene, uint64_t seed, DeviceScene& device) {
   c.lightCount = uint32_t(device.lights.size());
   c.lambdaMin = float(range.minNm);
   c.binsPerNm = float(range.bins / (range.maxNm - range.minNm));
-  camera.model->pack(c);
+  camera.model->pack(c, device.data);
   const Observer& observer = observerByName(scene.observer);
   for (size_t i = 0; i < observer.lambdaNm.size(); ++i)
     device.cmfTable.emplace_back(float(observer.xbar[i]), float(observer.ybar[i]), float(observer.zbar[i]));

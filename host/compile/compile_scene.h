@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "device_data/scene_data.h"
 #include "device_shared.h"
 #include "film/film_layout.h"
 #include "scene/scene.h"
@@ -28,11 +29,13 @@ struct DeviceScene {
   std::vector<device::AliasColumn> aliasColumns;    // the light choice's, then each light's table's
   std::vector<glm::vec3> cmfTable;                  // the observer's CMF nodes, for exact colour
   // Scene objects (empty without): primitives in the BVH's leaf order, the
-  // BVH, the materials and their reflectance tables' nodes.
+  // BVH, the materials.
   std::vector<device::Primitive> primitives;
   std::vector<device::BvhNode> bvhNodes;
   std::vector<device::Material> materials;
-  std::vector<float> reflectance;
+  // The scene data (device_shared.h): units' parameters and tables, by
+  // offset.
+  SceneData data;
 };
 
 // What became of one scene light, for messages and the bench.

@@ -69,11 +69,11 @@ class BeamKernel {
   // The scene's objects (none unless set; constants.objectPrimitives must
   // match).
   void setObjects(std::span<const Primitive> objectPrimitives, std::span<const BvhNode> nodes,
-                  std::span<const Material> objectMaterials, std::span<const float> reflectanceNodes) {
+                  std::span<const Material> objectMaterials, std::span<const uint32_t> sceneDataWords) {
     primitives = objectPrimitives;
     bvhNodes = nodes;
     materials = objectMaterials;
-    reflectance = reflectanceNodes;
+    sceneData = sceneDataWords;
   }
 
   // Beam `index` in record mode: whether it would be counted, and its
@@ -110,7 +110,7 @@ class BeamKernel {
   Primitive readPrimitive(uint i) const { return primitives[i]; }
   BvhNode readBvhNode(uint i) const { return bvhNodes[i]; }
   Material readMaterial(uint i) const { return materials[i]; }
-  float readReflectance(uint i) const { return reflectance[i]; }
+  uint32_t readSceneWord(uint i) const { return sceneData[i]; }
   // One chunk on the CPU: `chunk` is always 0. Queued when the caller gave
   // a PendingCounts (it must flush it), else added at once.
   void addCount(uint /*chunk*/, uint index, uint64_t amount) const {
@@ -129,7 +129,7 @@ class BeamKernel {
   std::span<const Primitive> primitives;
   std::span<const BvhNode> bvhNodes;
   std::span<const Material> materials;
-  std::span<const float> reflectance;
+  std::span<const uint32_t> sceneData;
   bool recording = false;  // record mode: counts are noted, not added
 
  public:

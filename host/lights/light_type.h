@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "camera/camera.h"
+#include "device_data/scene_data.h"
 #include "device_shared.h"
 #include "json/json_fields.h"
 #include "lights/light.h"
@@ -73,8 +74,9 @@ struct LightTypeUnit {
   void (*parse)(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr, Light& light);
   // The type's semantic checks (the common ones are validateScene's).
   void (*validate)(const Light& light, const LightFieldCheck& check);
-  // Fills the record's type parameters (param0, param1).
-  void (*pack)(const Light& light, device::LightRecord& record);
+  // Fills the record's type parameters: param0, param1, and whatever else
+  // the type needs appended to the scene data (dataFirst, dataWords).
+  void (*pack)(const Light& light, device::LightRecord& record, SceneData& data);
   // Why the light can never put a beam on the sensor, or "" when it might.
   std::string (*unreachableBecause)(const Light& light, const LightFrame& frame, const Camera& camera);
   // Fills the record's aim fields when aiming helps and returns the largest

@@ -59,7 +59,7 @@ void validate(const Light& light, const LightFieldCheck& check) {
                                      check.got("u_axis", u)));
 }
 
-void pack(const Light& light, device::LightRecord& record) {
+void pack(const Light& light, device::LightRecord& record, SceneData&) {
   record.param0 = float(light.sizeM.x);
   record.param1 = float(light.sizeM.y);
 }

@@ -32,7 +32,7 @@ inline BeamAgreement beamByBeam(const CompiledScene& plan, uint64_t firstBeam, u
   VulkanTracer gpu(sharedVulkan(), plan);
   const auto records = gpu.traceRecorded(firstBeam, count);
   device::BeamKernel cpu(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns);
-  cpu.setObjects(plan.device.primitives, plan.device.bvhNodes, plan.device.materials, plan.device.reflectance);
+  cpu.setObjects(plan.device.primitives, plan.device.bvhNodes, plan.device.materials, plan.device.data.words());
   BeamAgreement result;
   for (uint32_t i = 0; i < count; ++i) {
     const device::BeamRecord expected = cpuRecord(cpu, firstBeam + i);
