@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 #include <fmt/format.h>
 #include <sys/resource.h>
 
@@ -124,9 +125,15 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& options, const Device& device) {
+  return render(scene, compileScene(scene, options.seed, options.plan), options, device);
+}
+
+RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOptions& options, const Device& device) {
   const auto start = Clock::now();
+  if (compiled.device.constants.seed != options.seed)
+    throw std::logic_error("render: the plan was compiled with another seed than options.seed");
   RenderResult result;
-  result.plan = compileScene(scene, options.seed, options.plan);
+  result.plan = std::move(compiled);
   const CompiledScene& plan = result.plan;
   checkBeamScale(scene, plan, options.beams);
   // Before any film is allocated: a clear refusal, not a bad_alloc mid-render.

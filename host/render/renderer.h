@@ -76,6 +76,10 @@ struct RenderResult {
 RenderResult render(const Scene& scene, const RenderOptions& options);
 // The same render on a device opened by the caller (options.device unused).
 RenderResult render(const Scene& scene, const RenderOptions& options, const Device& device);
+// The same render of `plan`, the scene compiled by the caller with
+// options.seed and options.plan (a caller that needs the plan first, for a
+// state's fingerprint, compiles the scene once).
+RenderResult render(const Scene& scene, CompiledScene plan, const RenderOptions& options, const Device& device);
 
 // The resolve inputs for a scene and beam count: 683 x bin-averaged CMFs of
 // the scene's observer, XYZ -> linear sRGB, and the irradiance of one count.

@@ -90,11 +90,19 @@ void prepareFolder(const std::filesystem::path& output) {
 
 }  // namespace
 
-FilmFingerprint jobFingerprint(const RenderJob& job) {
+namespace {
+
+// The fingerprint of `job` traced as `plan`, its scene compiled with its seed and options.
+FilmFingerprint fingerprintFor(const RenderJob& job, const CompiledScene& plan) {
   const RenderOptions& o = job.options;
-  const CompiledScene plan = compileScene(job.scene, job.seedValue(), o.plan);
   return fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256, job.scene.observer,
                        job.seedValue(), o.specialisedFeatures, namedCompileOptions(o.plan));
+}
+
+}  // namespace
+
+FilmFingerprint jobFingerprint(const RenderJob& job) {
+  return fingerprintFor(job, compileScene(job.scene, job.seedValue(), job.options.plan));
 }
 
 namespace {
@@ -250,8 +258,10 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
     for (const auto& mine : {output, preview, job.state})
       if (!mine.empty() && sameFile(file, mine)) finishWriting();
   prepareFolder(output);
+  // Compiled once: for the state's fingerprint and the render.
+  CompiledScene plan = compileScene(job.scene, options.seed, options.plan);
   FilmFingerprint fingerprint;
-  if (!job.state.empty() || job.resume) fingerprint = jobFingerprint(job);
+  if (!job.state.empty() || job.resume) fingerprint = fingerprintFor(job, plan);
   if (job.resume) {
     checkResume(job, *job.resume, fingerprint);
     options.resumeFilm = &job.resume->histogram;
@@ -280,7 +290,7 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
     });
     if (written && onCheckpoint) onCheckpoint(image, done, device);
   };
-  RenderResult result = spectrace::render(job.scene, options, *device_);
+  RenderResult result = spectrace::render(job.scene, std::move(plan), options, *device_);
   device_->savePipelineCache();
   // The final write failing is a run-time failure; say what survived.
   const std::string survived =
@@ -348,9 +358,9 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   } catch (const std::invalid_argument& e) {
     throw FilmStateError(fmt::format("the state's compile options cannot be used: {}", e.what()));
   }
-  if (std::string field = fingerprintDifference(f, jobFingerprint(job)); !field.empty())
-    throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);
+  if (std::string field = fingerprintDifference(f, fingerprintFor(job, plan)); !field.empty())
+    throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   TracerOptions tracerOptions;
   tracerOptions.specialisedFeatures = f.specialisation;
   const auto tracer = device_->makeTracer(plan, tracerOptions);
