@@ -96,6 +96,15 @@ TEST(FilmState, DamagedFilesAreRefusedNeverHalfRead) {
   refusedWith("not a state at all, just some text that is long enough to hold a digest", "magic");
 }
 
+// State bytes with their SHA-256 appended, as writeFilmState ends a file.
+std::string signedState(std::string bytes) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr);
+  bytes.append(reinterpret_cast<const char*>(digest), length);
+  return bytes;
+}
+
 // A header whose film is far larger than the arrays after it (found by
 // film_state_fuzz) is refused before anything is allocated, not with a
 // bad_alloc: the checksum is right, only the claimed shape is wrong.
@@ -126,11 +135,7 @@ TEST(FilmState, HeaderClaimingAHugeFilmIsRefusedBeforeAllocating) {
   const uint32_t grown = headerBytes + 12;
   std::memcpy(bytes.data() + 12, &grown, 4);
   bytes.resize(bytes.size() - 32);
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr);
-  bytes.append(reinterpret_cast<const char*>(digest), length);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << signedState(bytes);
   try {
     readFilmState(file);
     ADD_FAILURE() << "accepted a state whose film does not fit its file";
@@ -151,11 +156,7 @@ std::string withHeader(const std::string& bytes, const nlohmann::json& header, u
   out.append(reinterpret_cast<const char*>(prefix), sizeof prefix);
   out += text;
   out += bytes.substr(16 + oldLength, bytes.size() - 32 - 16 - oldLength);
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  EVP_Digest(out.data(), out.size(), digest, &length, EVP_sha256(), nullptr);
-  out.append(reinterpret_cast<const char*>(digest), length);
-  return out;
+  return signedState(out);
 }
 
 // Version 1 recorded four compile options as fields of their own; a state
