@@ -100,9 +100,9 @@ TEST(DevelopWithoutDownload, RenderWithoutTheFilmGivesTheSameImage) {
     RenderOptions options;
     options.beams = 200'000;
     options.device = device;
-    options.checkpointSeconds = 0;
+    options.loop.checkpointSeconds = 0;
     const RenderResult withFilm = render(scene, options);
-    options.downloadFilm = false;
+    options.outputs.downloadFilm = false;
     const RenderResult withoutFilm = render(scene, options);
     EXPECT_TRUE(withoutFilm.histogram.counts.empty());
     ASSERT_FALSE(withFilm.histogram.counts.empty());

@@ -269,8 +269,8 @@ TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) 
   checkChart(scene, gpu.image, "lavapipe, to 5 sigma of its own noise", 0.0);
 
   RenderOptions options = optionsFor(DeviceChoice::Cpu, kCpuBeams);
-  options.resumeFilm = &prefix.histogram;
-  options.resumedBeams = kGpuBeams;
+  options.loop.resumeFilm = &prefix.histogram;
+  options.loop.resumedBeams = kGpuBeams;
   const RenderResult cpu = render(scene, options);
   ASSERT_EQ(cpu.beamsTraced, kCpuBeams.beams);
   std::printf("%s: %llu more beams in %.2f s\n", cpu.deviceName.c_str(), (unsigned long long)(kCpuBeams.beams - kGpuBeams.beams),

@@ -138,7 +138,7 @@ class OpticsReference : public ::testing::TestWithParam<DeviceChoice> {
     options.beams = beams;
     options.seed = seed;
     options.plan = plan;
-    options.checkpointSeconds = 0.0;
+    options.loop.checkpointSeconds = 0.0;
     const RenderResult result = render(scene, options, device());
     EXPECT_EQ(result.deviceKind, GetParam() == DeviceChoice::Gpu ? DeviceKind::Vulkan : DeviceKind::Cpu);
     std::printf("  [%s] %llu beams in %.2f s (%.1f Mbeam/s), %llu counted\n", deviceName(GetParam()),

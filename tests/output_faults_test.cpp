@@ -75,9 +75,9 @@ struct OutputFaults : ::testing::Test {
     job.beams = batches * kBatch;
     job.seed = 3;
     job.png = false;
-    job.options.batchBeams = kBatch;
-    job.options.checkpointSeconds = 1e-9;
-    job.options.cpuThreads = 1;
+    job.loop.batchBeams = kBatch;
+    job.loop.checkpointSeconds = 1e-9;
+    job.tracer.cpuThreads = 1;
     job.warn = [&warnings](const std::string& line) { warnings.push_back(line); };
     return job;
   }
@@ -105,8 +105,8 @@ TEST_F(OutputFaults, AFailedCheckpointWarnsOnceAndTheRenderGoesOnAndRetries) {
   DiskFull disk;
   std::vector<uint64_t> written;
   // The disk is full for the checkpoints after batches 2, 3 and 4.
-  render.options.onProgress = [&](uint64_t done, uint64_t) { disk.set(done >= 2 * kBatch && done <= 4 * kBatch); };
-  render.options.onCheckpoint = [&](const RenderImage&, uint64_t done, const std::string&) { written.push_back(done); };
+  render.loop.onProgress = [&](uint64_t done, uint64_t) { disk.set(done >= 2 * kBatch && done <= 4 * kBatch); };
+  render.loop.onCheckpoint = [&](const RenderImage&, uint64_t done, const std::string&) { written.push_back(done); };
   const RenderResult result = session.render(render);
   disk.set(false);
   EXPECT_EQ(result.beamsTraced, 8 * kBatch);
@@ -127,7 +127,7 @@ TEST_F(OutputFaults, AFailedFinalWriteFailsAndTheLastGoodCheckpointSurvives) {
   RenderJob render = job("final", 5, warnings);
   DiskFull disk;
   // Full from the checkpoint after batch 3 to the end.
-  render.options.onProgress = [&](uint64_t done, uint64_t) { disk.set(done >= 3 * kBatch); };
+  render.loop.onProgress = [&](uint64_t done, uint64_t) { disk.set(done >= 3 * kBatch); };
   std::string message;
   try {
     session.render(render);
@@ -171,7 +171,7 @@ TEST_F(OutputFaults, TemporaryFilesOfDeadProcessesAreRemovedByTheNextRender) {
   std::vector<std::string> warnings;
   RenderJob render = job("stale", 1, warnings);
   std::vector<std::string> logged;
-  render.options.log = [&](const std::string& line) { logged.push_back(line); };
+  render.loop.log = [&](const std::string& line) { logged.push_back(line); };
   // A pid above the kernel's pid_max (at most 2^22) belongs to no process;
   // pid 1 is always alive, so its file may be in use and stays.
   const std::string dead = "2147483000";

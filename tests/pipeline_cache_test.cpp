@@ -37,7 +37,7 @@ Rendered renderWith(const PipelineCacheOptions& cache) {
   options.seed = 7;
   options.device = DeviceChoice::Gpu;
   options.pipelineCache = cache;
-  options.log = [&](const std::string& line) { out.log += line + "\n"; };
+  options.loop.log = [&](const std::string& line) { out.log += line + "\n"; };
   out.result = render(smallScene(), options);
   return out;
 }

@@ -71,7 +71,7 @@ TEST(Profile, FullStageIsTheNormalKernel) {
   options.beams = kBeams;
   options.device = DeviceChoice::Gpu;
   const RenderResult plain = render(profileScene(), options);
-  options.profileStage = device::kProfileStageFull;
+  options.tracer.profileStage = device::kProfileStageFull;
   const RenderResult full = render(profileScene(), options);
   EXPECT_EQ(plain.image.rgb, full.image.rgb);
   EXPECT_EQ(plain.image.irradiance, full.image.irradiance);
@@ -130,7 +130,7 @@ TEST(Ceiling, HitsAsOftenAsTheFullKernelOnBothDevices) {
   RenderOptions options;
   options.beams = kCeilingBeams;
   options.device = DeviceChoice::Cpu;
-  options.cpuThreads = 2;
+  options.tracer.cpuThreads = 2;
   options.plan.aim = false;
   const RenderResult spectrace = render(throughput, options);
   const double p1 = double(cpu.hits) / double(kCeilingBeams);

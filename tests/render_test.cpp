@@ -30,9 +30,9 @@ RenderResult renderWith(DeviceChoice device, uint64_t beams, uint64_t batch, uin
   options.firstBeam = first;
   options.seed = 99;
   options.device = device;
-  options.batchBeams = batch;
-  options.workgroupSize = workgroup;
-  options.cpuThreads = threads;
+  options.loop.batchBeams = batch;
+  options.tracer.workgroupSize = workgroup;
+  options.tracer.cpuThreads = threads;
   return render(smallScene(), options);
 }
 
@@ -40,7 +40,7 @@ TEST(Render, AutoPicksTheVulkanDeviceWhenThereIsOne) {
   RenderOptions options;
   options.beams = 1000;
   std::string logged;
-  options.log = [&](const std::string& line) { logged += line + "\n"; };
+  options.loop.log = [&](const std::string& line) { logged += line + "\n"; };
   const RenderResult result = render(smallScene(), options);
   EXPECT_EQ(result.deviceKind, DeviceKind::Vulkan);  // lavapipe counts: it is a Vulkan device
   EXPECT_NE(logged.find(result.deviceName), std::string::npos) << "auto must say which device it picked";
@@ -54,9 +54,9 @@ TEST(Render, CancelledRenderKeepsExactlyTheFinishedBeams) {
     options.beams = beams;
     options.seed = 99;
     options.device = device;
-    options.batchBeams = beams / 4;
-    options.cancel = &cancel;
-    options.onProgress = [&](uint64_t done, uint64_t) { cancel.store(done >= beams / 2); };
+    options.loop.batchBeams = beams / 4;
+    options.loop.cancel = &cancel;
+    options.loop.onProgress = [&](uint64_t done, uint64_t) { cancel.store(done >= beams / 2); };
     const RenderResult partial = render(smallScene(), options);
     EXPECT_EQ(partial.beamsTraced, beams / 2);
     // The partial histogram is exactly that of the first two batches, and the image
@@ -75,10 +75,10 @@ TEST(Render, CheckpointsCarryTheFinishedBeams) {
   RenderOptions options;
   options.beams = 3'000'000;
   options.device = DeviceChoice::Gpu;
-  options.batchBeams = 1'000'000;
-  options.checkpointSeconds = 1e-9;  // after every batch but the last
+  options.loop.batchBeams = 1'000'000;
+  options.loop.checkpointSeconds = 1e-9;  // after every batch but the last
   std::vector<uint64_t> checkpoints;
-  options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
+  options.loop.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
     EXPECT_EQ(image.irradiance.size(), 40u * 30u);
     EXPECT_FALSE(device.empty());
     checkpoints.push_back(done);
@@ -160,7 +160,7 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
       options.device = DeviceChoice::Gpu;
       options.plan.exactColour = exactColour;
       const RenderResult specialised = render(scene, options);
-      options.specialisedFeatures = kSpecialiseNone;
+      options.tracer.specialisedFeatures = kSpecialiseNone;
       const RenderResult general = render(scene, options);
       EXPECT_GT(general.histogram.countedBeams, 1000u);
       expectSameHistogram(specialised.histogram, general.histogram, "specialised vs general");

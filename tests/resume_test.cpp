@@ -31,7 +31,7 @@ RenderJob lampJob(const fs::path& output, uint64_t beams) {
   job.beams = beams;
   job.seed = 9;
   job.png = false;
-  job.options.firstBeam = 12345;
+  job.firstBeam = 12345;
   return job;
 }
 
@@ -77,7 +77,7 @@ TEST_P(Resume, AStateOfAnotherRenderIsRefused) {
     EXPECT_NE(std::string(e.what()).find("seed"), std::string::npos) << e.what();
   }
   RenderJob otherStart = lampJob(dir / "c.exr", 100'000);
-  otherStart.options.firstBeam = 0;
+  otherStart.firstBeam = 0;
   otherStart.resume = readFilmState(first.state);
   EXPECT_THROW(session.render(otherStart), FilmStateError);
 }
@@ -92,9 +92,9 @@ TEST(ResumeFingerprint, HoldsEveryCompileOption) {
   ASSERT_EQ(base.compileOptions.size(), std::size(kCompileOptionFields));
   for (const CompileOptionField& field : kCompileOptionFields) {
     RenderJob changed = job;
-    changed.options.plan.*field.member = !(job.options.plan.*field.member);
+    changed.plan.*field.member = !(job.plan.*field.member);
     const FilmFingerprint other = jobFingerprint(changed);
-    EXPECT_EQ(other.compileOptions.at(field.name), changed.options.plan.*field.member) << field.name;
+    EXPECT_EQ(other.compileOptions.at(field.name), changed.plan.*field.member) << field.name;
     EXPECT_NE(other.compileOptions.at(field.name), base.compileOptions.at(field.name)) << field.name;
     EXPECT_NE(fingerprintDifference(base, other), "") << field.name;
   }
@@ -104,7 +104,7 @@ TEST(ResumeFingerprint, AStateOfAnAnalogRenderIsRefusedForAConnectedOne) {
   const Session session(DeviceChoice::Cpu);
   const fs::path dir = tempDir();
   RenderJob analog = lampJob(dir / "analog.exr", 20'000);
-  analog.options.plan.connect = false;
+  analog.plan.connect = false;
   analog.state = dir / "analog.state";
   session.render(analog);
   RenderJob connected = lampJob(dir / "connected.exr", 40'000);

@@ -83,10 +83,10 @@ TEST_P(Overlap, InterruptLeavesThePreviousJobComplete) {
   RenderJob first = pointJob(dir / "first.exr", 3000, 32);
   RenderJob second = pointJob(dir / "second.exr", 5000, 32);
   second.beams = 4000000;
-  second.options.batchBeams = 100000;
-  second.options.cancel = &cancel;
+  second.loop.batchBeams = 100000;
+  second.loop.cancel = &cancel;
   // The interrupt comes while `first` may still be being written.
-  second.options.onProgress = [&](uint64_t, uint64_t) { cancel = true; };
+  second.loop.onProgress = [&](uint64_t, uint64_t) { cancel = true; };
   const Session session(GetParam());
   auto firstWritten = session.renderOverlapped(first);
   auto secondWritten = session.renderOverlapped(second);

@@ -35,7 +35,7 @@ RenderResult renderSpectral(const Scene& scene, bool trimSpectrum, DeviceChoice 
   options.beams = 200'000;
   options.seed = 7;
   options.device = device;
-  options.spectral = true;
+  options.outputs.spectral = true;
   options.plan.trimSpectrum = trimSpectrum;
   return render(scene, options);
 }

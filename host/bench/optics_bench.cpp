@@ -25,8 +25,8 @@ RenderPair renderPair(const Scene& scene, const Device& device, uint64_t beams, 
                       const std::function<void(RenderOptions&)>& configure) {
   RenderOptions options;
   options.beams = beams;
-  options.cancel = bench.cancel;
-  options.checkpointSeconds = 0;
+  options.loop.cancel = bench.cancel;
+  options.loop.checkpointSeconds = 0;
   if (configure) configure(options);
   RenderOptions warm = options;
   warm.beams = std::min<uint64_t>(beams, 1 << 14);

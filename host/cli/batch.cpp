@@ -112,10 +112,10 @@ int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
     } else {
       RenderJob& job = *entry.job;
       job.png = command.png;
-      job.options.cancel = &cancel;
-      job.options.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
+      job.loop.cancel = &cancel;
+      job.outputs.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
       if (live)
-        job.options.onProgress = [&, i](uint64_t done, uint64_t all) {
+        job.loop.onProgress = [&, i](uint64_t done, uint64_t all) {
           std::fprintf(stderr, "\r\033[Kspectrace: [%zu/%zu] %s: %5.1f%%", i + 1, total, entries[i].where.c_str(),
                        100.0 * double(done) / double(all));
         };

@@ -70,7 +70,7 @@ RenderResult timedRender(const Scene& scene, const Device& device, uint64_t beam
                          const std::function<void(RenderOptions&)>& configure = {}) {
   RenderOptions options;
   options.beams = beams;
-  options.cancel = &cancel;
+  options.loop.cancel = &cancel;
   if (configure) configure(options);
   RenderOptions warm = options;
   warm.beams = uint64_t(1) << 16;
@@ -90,7 +90,7 @@ std::vector<ThroughputRow> runThroughput(const BenchCommand& command, const std:
       const RenderResult result =
           timedRender(scene, *opened, command.beams, cancel,
                       [&](RenderOptions& o) {
-                        o.cpuThreads = command.threads;
+                        o.tracer.cpuThreads = command.threads;
                         o.plan.exactColour = exactColour;
                       });
       ThroughputRow row{device.kind(), device.capabilities.reference, result.deviceName, exactColour,
@@ -154,10 +154,10 @@ std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vecto
     // from the bins (compile/shortcuts.h).
     const auto best = interleavedBest(device::kProfileStageFull + 2, kTimingRounds, [&](size_t stage) {
       return timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
-        o.cpuThreads = command.threads;
+        o.tracer.cpuThreads = command.threads;
         o.plan.exactColour = true;
         o.plan.colourFromBins = stage > device::kProfileStageFull;
-        o.profileStage = uint32_t(std::min<size_t>(stage, device::kProfileStageFull));
+        o.tracer.profileStage = uint32_t(std::min<size_t>(stage, device::kProfileStageFull));
       });
     });
     for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.capabilities));
@@ -192,7 +192,7 @@ std::vector<CeilingRow> runCeiling(const BenchCommand& command, const std::vecto
       row.ceilingSeconds = std::min(row.ceilingSeconds, ceiling.seconds);
       row.ceilingHits = ceiling.hits;
       const RenderResult result = timedRender(scene, *opened, row.beams, cancel, [&](RenderOptions& o) {
-        o.cpuThreads = command.threads;
+        o.tracer.cpuThreads = command.threads;
         o.plan.exactColour = true;
       });
       row.spectraceSeconds = std::min(row.spectraceSeconds, device.capabilities.deviceTimestamps
@@ -228,7 +228,7 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<DeviceSpec>& 
       variants.push_back(kSpecialiseAll);
       const auto best = interleavedBest(variants.size(), kTimingRounds, [&](size_t v) {
         return timedRender(scene, *opened, row.beams, cancel,
-                           [&](RenderOptions& o) { o.specialisedFeatures = variants[v]; });
+                           [&](RenderOptions& o) { o.tracer.specialisedFeatures = variants[v]; });
       });
       row.generalSeconds = best.front().traceSeconds;
       for (size_t v = 1; v + 1 < variants.size(); ++v) row.featureSeconds.push_back(best[v].traceSeconds);
@@ -301,7 +301,7 @@ std::vector<PipelineCacheRow> runPipelineCacheStudy(const std::vector<DeviceSpec
       const auto device = Device::open(spec, PipelineCacheOptions{true, file.string()});
       RenderOptions options;
       options.beams = 4096;
-      options.cancel = &cancel;
+      options.loop.cancel = &cancel;
       render(scene, options, *device);
     }  // closing the device saves the cache
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -446,7 +446,7 @@ std::vector<BatchOverheadRow> runBatchOverhead(const std::vector<DeviceSpec>& de
       job.scene.lights[0].spd = makeBlackbodySpd(sweepKelvins(kJobs)[i], 360, 830);
       job.output = folder / fmt::format("large_{}.exr", i);
       job.beams = kBeams;
-      job.options.cancel = &cancel;
+      job.loop.cancel = &cancel;
       jobs.push_back(std::move(job));
     }
     // A warm-up job, so pipeline compilation stays out of the timing.

@@ -50,8 +50,8 @@ void applyStateOptions(const RenderCommand& command, RenderJob& job) {
         slash != '/' || count == 0 || index >= count || command.shard->find('-') != std::string::npos) {
       throw UsageError(fmt::format("--shard {}: give I/K with 0 <= I < K, e.g. 0/4", *command.shard));
     }
-    const BeamRange range = shardRange(job.options.firstBeam, job.beamCount(), index, count);
-    job.options.firstBeam = range.first;
+    const BeamRange range = shardRange(job.firstBeam, job.beamCount(), index, count);
+    job.firstBeam = range.first;
     job.beams = range.count;
     // A shard is finished by `merge`: keep its exact state.
     if (!command.state) job.state = std::filesystem::path(job.output).replace_extension(".state");
@@ -114,21 +114,20 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
     job.beams = command.beams;
     job.seed = command.seed;
     job.png = command.png;
-    RenderOptions& options = job.options;
-    options.firstBeam = command.firstBeam;
-    options.cpuThreads = command.threads;
-    options.cpuCode = cpuCodeOption(command.cpuCode);
-    options.cancel = &cancel;
-    options.checkpointSeconds = command.checkpointSeconds;
-    options.plan.trimSpectrum = !command.fullSpectrum;
-    options.spectral = command.spectral;
-    options.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
-    options.plan.trimPixels = !command.fullSensor;
-    options.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
-    options.plan.aim = !command.noAim;
-    options.plan.connect = !command.noConnect;
-    options.plan.colourFromBins = !command.perBeamColour;
-    if (!command.quiet) options.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+    job.firstBeam = command.firstBeam;
+    job.tracer.cpuThreads = command.threads;
+    job.tracer.cpuCode = cpuCodeOption(command.cpuCode);
+    job.loop.cancel = &cancel;
+    job.loop.checkpointSeconds = command.checkpointSeconds;
+    job.plan.trimSpectrum = !command.fullSpectrum;
+    job.outputs.spectral = command.spectral;
+    job.outputs.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
+    job.plan.trimPixels = !command.fullSensor;
+    job.tracer.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
+    job.plan.aim = !command.noAim;
+    job.plan.connect = !command.noConnect;
+    job.plan.colourFromBins = !command.perBeamColour;
+    if (!command.quiet) job.loop.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     checkBeamRange(command.firstBeam, job.beamCount());
     applyStateOptions(command, job);
     std::vector<std::filesystem::path> inputs(command.scenes.begin(), command.scenes.end());
@@ -155,10 +154,10 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     const auto& output = job.output;
     const uint64_t beams = job.beamCount();
     if (!command.quiet) {
-      job.options.onCheckpoint = [&](const RenderImage&, uint64_t done, const std::string&) {
+      job.loop.onCheckpoint = [&](const RenderImage&, uint64_t done, const std::string&) {
         std::fprintf(stderr, "spectrace: checkpoint: %llu beams -> %s\n", (unsigned long long)done, output.c_str());
       };
-      job.options.onProgress = [](uint64_t done, uint64_t total) {
+      job.loop.onProgress = [](uint64_t done, uint64_t total) {
         std::fprintf(stderr, "\rspectrace: %5.1f%% (%llu of %llu beams)", 100.0 * double(done) / double(total),
                      (unsigned long long)done, (unsigned long long)total);
         if (done == total) std::fprintf(stderr, "\n");

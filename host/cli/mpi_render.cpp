@@ -72,7 +72,7 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
     const BeamRange mine = mpi::rankBeams(job, world.rank(), world.size());
     if (talk) {
       say(fmt::format("{}: {} beams over {} MPI ranks", job.scene.sourcePath.string(), job.beamCount(), world.size()));
-      job.options.onProgress = [](uint64_t done, uint64_t total) {
+      job.loop.onProgress = [](uint64_t done, uint64_t total) {
         std::fprintf(stderr, "\rspectrace: rank 0: %5.1f%% of its %llu beams", 100.0 * double(done) / double(total),
                      (unsigned long long)total);
         if (done == total) std::fprintf(stderr, "\n");
@@ -94,7 +94,7 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
       if (!root || total == 0) return;
       const FilmState state = mpi::combinedState(job, finished, std::move(part.histogram));
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const RenderResult result = session->develop(state, job.output, job.options.spectral, job.png, seconds);
+      const RenderResult result = session->develop(state, job.output, job.outputs.spectral, job.png, seconds);
       if (!job.state.empty()) writeFilmState(job.state, state);
       if (talk)
         say(fmt::format("{} beams in {:.2f} s ({:.1f} Mbeam/s) on {} MPI ranks; rank 0 on {}; wrote {}", total,

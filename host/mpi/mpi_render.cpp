@@ -3,20 +3,19 @@
 namespace spectrace::mpi {
 
 BeamRange rankBeams(const RenderJob& job, int rank, int size) {
-  return shardRange(job.options.firstBeam, job.beamCount(), uint64_t(rank), uint64_t(size));
+  return shardRange(job.firstBeam, job.beamCount(), uint64_t(rank), uint64_t(size));
 }
 
 RenderResult traceBeams(const Device& device, const RenderJob& job, const BeamRange& beams) {
-  RenderOptions options = job.options;
+  RenderOptions options = job.renderOptions();
   options.firstBeam = beams.first;
   options.beams = beams.count;
-  options.seed = job.seedValue();
   // Rank 0 develops the summed film; a rank's own image is never written.
-  options.spectral = false;
-  options.checkpointSeconds = 0;
-  options.onCheckpoint = nullptr;
-  options.onCheckpointFilm = nullptr;
-  options.downloadFilm = true;  // the films are summed on rank 0
+  options.outputs.spectral = false;
+  options.loop.checkpointSeconds = 0;
+  options.loop.onCheckpoint = nullptr;
+  options.loop.onCheckpointFilm = nullptr;
+  options.outputs.downloadFilm = true;  // the films are summed on rank 0
   return render(job.scene, options, device);
 }
 

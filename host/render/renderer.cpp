@@ -42,7 +42,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 
 // Beams per batch: about a second of work, between 2^20 and 2^30.
 uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const RenderOptions& options) {
-  if (options.batchBeams) return std::min(options.batchBeams, remaining);
+  if (options.loop.batchBeams) return std::min(options.loop.batchBeams, remaining);
   uint64_t batch = uint64_t(1) << 22;
   if (done > 0 && seconds > 0.0) batch = uint64_t(double(done) / seconds);
   batch = std::clamp<uint64_t>(batch, uint64_t(1) << 20, uint64_t(1) << 30);
@@ -120,7 +120,7 @@ void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, const De
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
-  const auto device = Device::open(options.device, options.log, options.pipelineCache);
+  const auto device = Device::open(options.device, options.loop.log, options.pipelineCache);
   return render(scene, options, *device);
 }
 
@@ -137,41 +137,40 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
   const CompiledScene& plan = result.plan;
   checkBeamScale(scene, plan, options.beams);
   // Before any film is allocated: a clear refusal, not a bad_alloc mid-render.
-  checkFilmFitsMemory(scene, plan, device.capabilities(), options.spectral, options.downloadFilm);
+  checkFilmFitsMemory(scene, plan, device.capabilities(), options.outputs.spectral, options.outputs.downloadFilm);
   std::unique_ptr<Tracer> tracer;
   try {
-    tracer = device.makeTracer(plan, TracerOptions{options.workgroupSize, options.specialisedFeatures, options.cpuThreads,
-                                                     options.cpuCode, options.profileStage});
+    tracer = device.makeTracer(plan, options.tracer);
   } catch (const SceneError& e) {  // the device's limits, named by field; add the file
     throw SceneError(scenePrefix(scene) + e.what());
   }
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
-  if (options.log)
-    options.log(fmt::format("device: {}", result.deviceLabel()));
+  if (options.loop.log)
+    options.loop.log(fmt::format("device: {}", result.deviceLabel()));
 
   uint64_t done = 0;
-  if (options.resumeFilm) {
-    tracer->upload(*options.resumeFilm);
-    done = std::min(options.resumedBeams, options.beams);
+  if (options.loop.resumeFilm) {
+    tracer->upload(*options.loop.resumeFilm);
+    done = std::min(options.loop.resumedBeams, options.beams);
   }
   const uint64_t resumed = done;
   auto lastCheckpoint = Clock::now();
   const auto traceStart = Clock::now();
   while (done < options.beams) {
-    if (options.cancel && options.cancel->load()) break;
+    if (options.loop.cancel && options.loop.cancel->load()) break;
     const uint64_t batch = nextBatch(done - resumed, secondsSince(traceStart), options.beams - done, options);
-    done += tracer->trace(options.firstBeam + done, batch, options.cancel);
-    if (options.onProgress) options.onProgress(done, options.beams);
-    if (options.onCheckpoint && options.checkpointSeconds > 0.0 && done < options.beams &&
-        secondsSince(lastCheckpoint) >= options.checkpointSeconds) {
+    done += tracer->trace(options.firstBeam + done, batch, options.loop.cancel);
+    if (options.loop.onProgress) options.loop.onProgress(done, options.beams);
+    if (options.loop.onCheckpoint && options.loop.checkpointSeconds > 0.0 && done < options.beams &&
+        secondsSince(lastCheckpoint) >= options.loop.checkpointSeconds) {
       const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
       RenderImage image = tracer->develop(parameters);
-      const bool needsFilm = options.spectral || options.onCheckpointFilm;
+      const bool needsFilm = options.outputs.spectral || options.loop.onCheckpointFilm;
       const SpectralHistogram film = needsFilm ? tracer->download() : SpectralHistogram();
-      if (options.spectral) addSpectralChannels(image, film, plan, parameters);
-      options.onCheckpoint(image, done, result.deviceLabel());
-      if (options.onCheckpointFilm) options.onCheckpointFilm(film, done);
+      if (options.outputs.spectral) addSpectralChannels(image, film, plan, parameters);
+      options.loop.onCheckpoint(image, done, result.deviceLabel());
+      if (options.loop.onCheckpointFilm) options.loop.onCheckpointFilm(film, done);
       lastCheckpoint = Clock::now();
     }
   }
@@ -179,8 +178,8 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
   result.traceWallSeconds = secondsSince(traceStart);
   const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
   result.image = tracer->develop(parameters, &result.summary);
-  if (options.downloadFilm || options.spectral) result.histogram = tracer->download();
-  if (options.spectral && !options.spectralByCaller) addSpectralChannels(result.image, result.histogram, plan, parameters);
+  if (options.outputs.downloadFilm || options.outputs.spectral) result.histogram = tracer->download();
+  if (options.outputs.spectral && !options.outputs.spectralByCaller) addSpectralChannels(result.image, result.histogram, plan, parameters);
   result.traceDeviceSeconds = tracer->traceDeviceSeconds();
   result.resolveDeviceSeconds = tracer->developDeviceSeconds();
   result.wallSeconds = secondsSince(start);

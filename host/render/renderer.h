@@ -15,23 +15,23 @@
 
 namespace spectrace {
 
-struct RenderOptions {
-  uint64_t beams = 0;        // total beams
-  uint64_t firstBeam = 0;    // index of the first beam (disjoint ranges merge exactly)
-  uint64_t seed = 1;
-  DeviceChoice device = DeviceChoice::Auto;
-  PipelineCacheOptions pipelineCache;  // for the device render(scene, options) opens
-  unsigned cpuThreads = 0;           // 0: all hardware threads
-  std::optional<CpuCode> cpuCode;    // none: the fastest this processor runs
-  uint32_t workgroupSize = 64;
-  CompileOptions plan;             // aiming, exact colour, trimmed spectrum and sensor, skipped lights
-  // GPU: the scene features the trace pipeline is compiled for
-  // (SpecialisedFeature bits; kSpecialiseNone: the general pipeline).
-  uint32_t specialisedFeatures = kSpecialiseAll;
-  uint32_t profileStage = device::kProfileStageFull;  // bench only: the kernel cut after a stage (shaders/profile.h)
+// What a render produces besides its image.
+struct RenderOutputs {
   // Add the spectral block (one spectral irradiance per bin of the full
   // spectrum) to the image; error.E is always added.
   bool spectral = false;
+  // Leave the final image's spectral block (addSpectralChannels) to the
+  // caller, who may compute it on another thread.
+  bool spectralByCaller = false;
+  // Download the final film into RenderResult::histogram. A render whose
+  // image is all it writes needs no download (about a copy of the film
+  // and its allocation); the spectral block and the render state do.
+  bool downloadFilm = true;
+};
+
+// How the render loop runs: batches, checkpoints, progress, cancellation,
+// and where it starts from.
+struct RenderLoop {
   uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
@@ -41,19 +41,33 @@ struct RenderOptions {
   // With each checkpoint, the exact film of the beams finished so far
   // (for the render state, film/film_state.h).
   std::function<void(const SpectralHistogram& film, uint64_t beamsDone)> onCheckpointFilm;
+  std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
+  std::function<void(const std::string&)> log;  // device choice and notices
   // Resume: the film of beams [firstBeam, firstBeam + resumedBeams), already
   // traced; the render goes on after them and ends as if never stopped.
   const SpectralHistogram* resumeFilm = nullptr;
   uint64_t resumedBeams = 0;
-  // Leave the final image's spectral block (addSpectralChannels) to the
-  // caller, who may compute it on another thread.
-  bool spectralByCaller = false;
-  // Download the final film into RenderResult::histogram. A render whose
-  // image is all it writes needs no download (about a copy of the film
-  // and its allocation); the spectral block and the render state do.
-  bool downloadFilm = true;
-  std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
-  std::function<void(const std::string&)> log;  // device choice and notices
+};
+
+// A render, split by who decides each part.
+struct RenderOptions {
+  // What to trace.
+  uint64_t beams = 0;        // total beams
+  uint64_t firstBeam = 0;    // index of the first beam (disjoint ranges merge exactly)
+  uint64_t seed = 1;
+  // Where: the device render(scene, options) opens (unused when the caller
+  // passes one).
+  DeviceChoice device = DeviceChoice::Auto;
+  PipelineCacheOptions pipelineCache;
+  // How: the scene's compilation (shortcuts, estimators), which a render
+  // state's fingerprint holds, and the device's tuning (threads, workgroup,
+  // specialised pipeline), which changes no film.
+  CompileOptions plan;
+  TracerOptions tracer;
+  // What it produces.
+  RenderOutputs outputs;
+  // The loop.
+  RenderLoop loop;
 };
 
 struct RenderResult {

@@ -94,15 +94,26 @@ namespace {
 
 // The fingerprint of `job` traced as `plan`, its scene compiled with its seed and options.
 FilmFingerprint fingerprintFor(const RenderJob& job, const CompiledScene& plan) {
-  const RenderOptions& o = job.options;
   return fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256, job.scene.observer,
-                       job.seedValue(), o.specialisedFeatures, namedCompileOptions(o.plan));
+                       job.seedValue(), job.tracer.specialisedFeatures, namedCompileOptions(job.plan));
 }
 
 }  // namespace
 
+RenderOptions RenderJob::renderOptions() const {
+  RenderOptions options;
+  options.beams = beamCount();
+  options.firstBeam = firstBeam;
+  options.seed = seedValue();
+  options.plan = plan;
+  options.tracer = tracer;
+  options.outputs = outputs;
+  options.loop = loop;
+  return options;
+}
+
 FilmFingerprint jobFingerprint(const RenderJob& job) {
-  return fingerprintFor(job, compileScene(job.scene, job.seedValue(), job.options.plan));
+  return fingerprintFor(job, compileScene(job.scene, job.seedValue(), job.plan));
 }
 
 namespace {
@@ -112,7 +123,7 @@ namespace {
 void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerprint& fingerprint) {
   if (std::string field = fingerprintDifference(state.fingerprint, fingerprint); !field.empty())
     throw FilmStateError("the state does not belong to this render: it differs in " + field);
-  const uint64_t first = job.options.firstBeam;
+  const uint64_t first = job.firstBeam;
   if (state.ranges.size() != 1 || state.ranges[0].first != first || state.ranges[0].count > job.beamCount())
     throw FilmStateError(fmt::format("the state's beams are not a start of this render's beams [{}, +{})", first,
                                      job.beamCount()));
@@ -241,15 +252,13 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
     for (const auto& target : {job.output, preview, job.state})
       if (!target.empty())
         for (const auto& stale : removeStaleTemporaries(target))
-          if (job.options.log) job.options.log("removed the stale temporary file " + stale.string());
+          if (job.loop.log) job.loop.log("removed the stale temporary file " + stale.string());
   }
-  RenderOptions options = job.options;
-  options.spectral = options.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
-  options.beams = job.beamCount();
-  options.seed = job.seedValue();
-  options.spectralByCaller = true;  // on the writer thread
+  RenderOptions options = job.renderOptions();
+  options.outputs.spectral = options.outputs.spectral || job.scene.outputSpectral;  // --spectral, or the scene's output.spectral
+  options.outputs.spectralByCaller = true;  // on the writer thread
   // The state file and the spectral block need the film on the host.
-  options.downloadFilm = options.downloadFilm || options.spectral || !job.state.empty();
+  options.outputs.downloadFilm = options.outputs.downloadFilm || options.outputs.spectral || !job.state.empty();
   const auto& output = job.output;
   auto preview = output;
   preview.replace_extension(".png");
@@ -264,8 +273,8 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
   if (!job.state.empty() || job.resume) fingerprint = fingerprintFor(job, plan);
   if (job.resume) {
     checkResume(job, *job.resume, fingerprint);
-    options.resumeFilm = &job.resume->histogram;
-    options.resumedBeams = job.resume->beams();
+    options.loop.resumeFilm = &job.resume->histogram;
+    options.loop.resumedBeams = job.resume->beams();
   }
   auto writeState = [state = job.state, fingerprint, first = options.firstBeam](const SpectralHistogram& film,
                                                                                 uint64_t done) {
@@ -274,15 +283,15 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
   };
   const auto warn = job.warn ? job.warn : std::function<void(const std::string&)>(warnOnStderr);
   CheckpointWriter exrCheckpoints(warn), stateCheckpoints(warn);
-  auto onCheckpointFilm = options.onCheckpointFilm;
-  options.onCheckpointFilm = [&](const SpectralHistogram& film, uint64_t done) {
+  auto onCheckpointFilm = options.loop.onCheckpointFilm;
+  options.loop.onCheckpointFilm = [&](const SpectralHistogram& film, uint64_t done) {
     stateCheckpoints.attempt(job.state, done, [&] { writeState(film, done); });
     if (onCheckpointFilm) onCheckpointFilm(film, done);
   };
   const auto start = std::chrono::steady_clock::now();
-  auto onCheckpoint = options.onCheckpoint;
+  auto onCheckpoint = options.loop.onCheckpoint;
   // A checkpoint is a complete, valid image of the beams finished so far.
-  options.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
+  options.loop.onCheckpoint = [&](const RenderImage& image, uint64_t done, const std::string& device) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool written = exrCheckpoints.attempt(output, done, [&] {
       writeExr(output, image,
@@ -302,7 +311,7 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
           : std::string();
   // Bounded: the previous job is written before this one is handed over.
   finishWriting();
-  auto write = [result = std::move(result), scene = job.scene, output, png = job.png, spectral = options.spectral,
+  auto write = [result = std::move(result), scene = job.scene, output, png = job.png, spectral = options.outputs.spectral,
                 aim = options.plan.aim, seed = options.seed, firstBeam = options.firstBeam, writeState, survived,
                 lock]() mutable -> RenderResult {
     const auto held = std::move(lock);  // released when this write ends, not when the future goes
@@ -351,14 +360,14 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   checkOutputPath(job);  // the scene and its CSV spectra are inputs too
   job.seed = f.seed;
   job.beams = state.beams();
-  job.options.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
-  job.options.specialisedFeatures = f.specialisation;
+  job.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
+  job.tracer.specialisedFeatures = f.specialisation;
   try {
-    job.options.plan = compileOptionsNamed(f.compileOptions);
+    job.plan = compileOptionsNamed(f.compileOptions);
   } catch (const std::invalid_argument& e) {
     throw FilmStateError(fmt::format("the state's compile options cannot be used: {}", e.what()));
   }
-  const CompiledScene plan = compileScene(job.scene, f.seed, job.options.plan);
+  const CompiledScene plan = compileScene(job.scene, f.seed, job.plan);
   if (std::string field = fingerprintDifference(f, fingerprintFor(job, plan)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   TracerOptions tracerOptions;
@@ -380,7 +389,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   removeStaleTemporaries(output);
   try {
     writeImage(output, result.image,
-               renderMetadata(job.scene, result.deviceLabel(), job.options.plan.aim, f.seed, job.options.firstBeam,
+               renderMetadata(job.scene, result.deviceLabel(), job.plan.aim, f.seed, job.firstBeam,
                               result.beamsTraced, wallSeconds),
                png);
   } catch (const ImageIoError& e) {

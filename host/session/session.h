@@ -21,16 +21,22 @@
 
 namespace spectrace {
 
-// One render: a parsed scene, where its image goes and how it is traced.
+// One render: a parsed scene, where its image goes and how it is traced
+// (the parts of RenderOptions that are the job's; the device is the
+// session's).
 struct RenderJob {
   Scene scene;
   std::filesystem::path output;           // the EXR; the PNG goes beside it
+  // What to trace.
   std::optional<uint64_t> beams;          // default: the scene's render.beams
   std::optional<uint64_t> seed;           // default: the scene's render.seed
+  uint64_t firstBeam = 0;
   bool png = true;
-  // Everything else about the render (shortcuts, threads, callbacks).
-  // beams, seed and device are the job's and the session's.
-  RenderOptions options;
+  // How (compilation, the device's tuning), what it produces, the loop.
+  CompileOptions plan;
+  TracerOptions tracer;
+  RenderOutputs outputs;
+  RenderLoop loop;
   // The exact render state, written at every checkpoint and at the end
   // (film/film_state.h); none when empty.
   std::filesystem::path state;
@@ -42,6 +48,8 @@ struct RenderJob {
 
   uint64_t beamCount() const { return beams.value_or(scene.render.beams); }
   uint64_t seedValue() const { return seed.value_or(scene.render.seed); }
+  // The job as RenderOptions: its beams and seed resolved.
+  RenderOptions renderOptions() const;
 };
 
 // Writing a job's output failed (the render itself was fine).
