@@ -3,7 +3,7 @@
 // work with no exactness guarantees, to show how fast the device can go.
 // A hash of the invocation for random numbers, the wavelength by a float
 // CDF search, cosine-weighted disk emission, the sensor plane, one 32-bit
-// atomic. Never used to render; host/bench/ceiling.cpp is its CPU twin.
+// atomic. Never used to render; host/backend/ceiling.cpp is its CPU twin.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_scalar_block_layout : require

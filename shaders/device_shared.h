@@ -390,7 +390,7 @@ struct RngCheckPush {
   uint block;
 };
 
-// The bench's ceiling kernel (shaders/ceiling.comp, host/bench/ceiling.cpp):
+// The bench's ceiling kernel (shaders/ceiling.comp, host/backend/ceiling.cpp):
 // a disk light facing a bare sensor at z = 0, no exactness work.
 struct CeilingPush {
   uint beamBase;        // first beam's index (32 bit: the hash's input)
