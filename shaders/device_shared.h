@@ -189,7 +189,7 @@ SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
 // or material type) keeps parameters and tables of any length, addressed by
 // offsets its own record holds, read through readSceneWord (a float as its
 // bits, readSceneFloat), so a new table needs no binding of its own. Built by
-// DeviceScene::appendSceneData (host/compile/compile_scene.h). The
+// SceneData::append (host/device_data/scene_data.h). The
 // materials' reflectance tables are its first tables.
 
 SPECTRACE_CONSTANT uint kMaterialAbsorber = 0;

@@ -4,9 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <numeric>
 #include <thread>
-
 
 namespace spectrace {
 namespace {

@@ -40,10 +40,7 @@ struct DeviceCapabilities {
   bool deviceTimestamps = false;      // tracers report device time of their passes
   bool specialisedPipelines = false;  // trace pipelines can be specialised to a scene (TracerOptions)
   bool pipelineCache = false;         // compiled pipelines are kept in a file between runs
-  bool bufferPool = false;            // tracers of one device reuse each other's device buffers
   bool filmInHostMemory = false;      // the film's counters are held in host memory while tracing
-  uint64_t maxStorageBufferRange = 0;  // bytes one storage buffer may span; 0: no limit
-  uint64_t maxUniformBufferRange = 0;  // 0: no limit
   std::string unusableBecause;  // "": spectrace can run on it; otherwise what it lacks
 };
 

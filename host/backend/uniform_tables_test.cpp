@@ -1,11 +1,11 @@
 // Where the trace reads its tables: the one check (uniformTableLayout) and
 // the uniform path against the storage path on the device.
-#include "camera/pinhole_camera.h"
 #include "backend/uniform_tables.h"
 
 #include <gtest/gtest.h>
 
 #include "backend/vulkan_tracer.h"
+#include "camera/pinhole_camera.h"
 #include "compile/compile_scene.h"
 #include "scene/scene_builders.h"
 #include "support/test_scenes.h"

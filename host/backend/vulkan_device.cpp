@@ -19,9 +19,6 @@ DeviceCapabilities vulkanCapabilities(const vk_util::DeviceInfo& info) {
   c.deviceTimestamps = info.timestampsSupported;
   c.specialisedPipelines = true;
   c.pipelineCache = true;
-  c.bufferPool = true;
-  c.maxStorageBufferRange = info.maxStorageBufferRange;
-  c.maxUniformBufferRange = info.maxUniformBufferRange;
   c.unusableBecause = info.missingFeatures();
   return c;
 }
@@ -50,9 +47,8 @@ uint64_t VulkanDevice::bufferAllocations() const { return buffers_->allocations(
 CeilingResult VulkanDevice::traceCeiling(const CeilingScene& scene, uint64_t beams, unsigned) const {
   const vk_util::Context& context = *context_;
   constexpr uint32_t kWorkgroup = 64;
-  std::vector<vk_util::BindingSpec> bindings;
-  for (const auto& slot : device::kCeilingBindings) bindings.push_back({slot.binding, slot.count});
-  vk_util::ComputePipeline pipeline(context, embedded::spv_ceiling(), bindings, sizeof(device::CeilingPush),
+  vk_util::ComputePipeline pipeline(context, embedded::spv_ceiling(), bindingSpecs(device::kCeilingBindings),
+                                    sizeof(device::CeilingPush),
                                     {{device::kSpecWorkgroupSize, kWorkgroup}});
   vk_util::Buffer cdf(context, scene.cdf.size() * sizeof(float), {}, vk_util::MemoryPlacement::DeviceLocal);
   cdf.upload(scene.cdf.data(), scene.cdf.size() * sizeof(float));
@@ -86,6 +82,5 @@ CeilingResult VulkanDevice::traceCeiling(const CeilingScene& scene, uint64_t bea
   result.hits = std::accumulate(result.counts.begin(), result.counts.end(), uint64_t(0));
   return result;
 }
-
 
 }  // namespace spectrace

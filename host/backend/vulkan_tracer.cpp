@@ -66,7 +66,6 @@ uint64_t TracerBufferPool::allocations() const {
   return allocations_;
 }
 
-// A pipeline's descriptor layout from its one binding table (device_shared.h).
 std::vector<vk_util::BindingSpec> bindingSpecs(std::span<const device::BindingSlot> table) {
   std::vector<vk_util::BindingSpec> specs;
   for (const auto& slot : table) specs.push_back({slot.binding, slot.count, slot.uniform});

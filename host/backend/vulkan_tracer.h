@@ -47,6 +47,9 @@ device::ResolveConstants resolveConstants(const CompiledScene& plan, const Resol
                                           uint32_t pixelsPerChunk);
 std::vector<glm::vec3> storedBinWeights(const CompiledScene& plan, const ResolveParameters& parameters);
 
+// A pipeline's descriptor layout from its one binding table (device_shared.h).
+std::vector<vk_util::BindingSpec> bindingSpecs(std::span<const device::BindingSlot> table);
+
 // Device buffers kept between the tracers of one device (a session's jobs).
 // A tracer takes each buffer it needs by role ("histogram 0", "lights", ...)
 // and gives them back when destroyed; the next tracer reuses a buffer whose

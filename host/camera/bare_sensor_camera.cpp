@@ -15,7 +15,6 @@ namespace {
 
 class BareSensorModel final : public CameraModel {
  public:
-  const char* name() const override { return ""; }
   void validate(const CameraFieldCheck&) const override {}
   void pack(device::TraceConstants& c, SceneData&) const override {
     c.cameraType = device::kCameraBareSensor;

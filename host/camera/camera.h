@@ -52,6 +52,8 @@ class CameraFieldCheck {
   [[noreturn]] virtual void fail(const std::string& key, const std::string& what) const = 0;
   // For "(got ...)": the value as the scene file wrote it, else `fallback`.
   virtual std::string got(const std::string& key, double fallback) const = 0;
+  // Fails unless `value` is a length in metres within the world bounds.
+  virtual void checkLength(const std::string& key, double value) const = 0;
 };
 
 struct Camera;
@@ -61,8 +63,6 @@ struct Camera;
 class CameraModel {
  public:
   virtual ~CameraModel() = default;
-  // Its JSON key in the camera object ("pinhole"), "" for the bare sensor.
-  virtual const char* name() const = 0;
   // Its value checks; the scene's are validateScene's.
   virtual void validate(const CameraFieldCheck& check) const = 0;
   // The kernel's camera constants: cameraType, cameraFrontZ, cameraParams,

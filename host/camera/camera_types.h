@@ -15,7 +15,6 @@ struct CameraTypeUnit {
   // The key of the camera object that holds this model ("pinhole"); the
   // bare sensor, which has none, is not in the table.
   const char* key;
-  json_fields::Keys keys;  // the keys inside that object
   // Reads the object `v` at `ptr` (types only: value ranges are the model's
   // validate).
   std::shared_ptr<const CameraModel> (*parse)(const json_fields::Source& c, const json_fields::Json& v,

@@ -25,10 +25,9 @@ class PinholeModel final : public CameraModel {
   explicit PinholeModel(const Pinhole& p) : pinhole_(p) {}
   const Pinhole& pinhole() const { return pinhole_; }
 
-  const char* name() const override { return "pinhole"; }
   void validate(const CameraFieldCheck& check) const override {
-    checkLength(check, "pinhole/distance_m", pinhole_.distanceM);
-    checkLength(check, "pinhole/radius_m", pinhole_.radiusM);
+    check.checkLength("pinhole/distance_m", pinhole_.distanceM);
+    check.checkLength("pinhole/radius_m", pinhole_.radiusM);
   }
   // cameraParams.x: the aperture's radius squared.
   void pack(device::TraceConstants& c, SceneData&) const override {
@@ -68,11 +67,6 @@ class PinholeModel final : public CameraModel {
   bool imageFlipped() const override { return true; }
 
  private:
-  static void checkLength(const CameraFieldCheck& check, const std::string& key, double value) {
-    if (!(std::isfinite(value) && value > 0.0 && value <= kMaxCoordinateM))
-      check.fail(key, fmt::format("must be a length in metres, > 0 and <= {:g} (got {})", kMaxCoordinateM,
-                                  check.got(key, value)));
-  }
   Pinhole pinhole_;
 };
 
@@ -96,7 +90,7 @@ const Pinhole* pinholeOf(const Camera& camera) {
 }
 
 const CameraTypeUnit& pinholeCameraUnit() {
-  static const CameraTypeUnit unit{"pinhole", {"distance_m", "radius_m"}, parse};
+  static const CameraTypeUnit unit{"pinhole", parse};
   return unit;
 }
 

@@ -92,7 +92,7 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
 
     code = collectively(world, [&] {
       if (!root || total == 0) return;
-      const FilmState state = mpi::combinedState(job, finished, std::move(part.histogram));
+      const FilmState state = mpi::combinedState(job, part.plan, finished, std::move(part.histogram));
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const RenderResult result = session->develop(state, job.output, job.outputs.spectral, job.png, seconds);
       if (!job.state.empty()) writeFilmState(job.state, state);

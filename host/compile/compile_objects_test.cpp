@@ -1,13 +1,13 @@
 // Scene objects in the compiler: which shortcuts each kind of object turns
 // off (compile/shortcuts.h), the primitives and their BVH, the reflectance
 // tables, and the film's weights under camera connections.
-#include "camera/pinhole_camera.h"
 #include "compile/compile_objects.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
+#include "camera/pinhole_camera.h"
 #include "compile/shortcuts.h"
 #include "scene/scene_builders.h"
 

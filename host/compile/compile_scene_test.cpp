@@ -1,5 +1,4 @@
 // The trace plan's aiming decisions and weights, against closed forms.
-#include "camera/pinhole_camera.h"
 #include "compile/compile_scene.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "camera/pinhole_camera.h"
 #include "kernel/beam_kernel.h"
 
 #include "scene/scene_builders.h"

@@ -251,8 +251,8 @@ std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprin
     if (it.key() == "scene_file") continue;  // the same scene may be named by two paths; its hash decides
     const json& other = fb.at(it.key());
     if (it.value().is_object() && other.is_object()) {  // compile_options: name the option
-      for (const auto& key : {it.value(), other})
-        for (auto option = key.begin(); option != key.end(); ++option)
+      for (const json* side : {&it.value(), &other})
+        for (auto option = side->begin(); option != side->end(); ++option)
           if (it.value().value(option.key(), json()) != other.value(option.key(), json()))
             return fmt::format("{}/{}: {} against {}", it.key(), option.key(),
                                it.value().value(option.key(), json()).dump(), other.value(option.key(), json()).dump());

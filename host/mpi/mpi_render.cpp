@@ -19,8 +19,9 @@ RenderResult traceBeams(const Device& device, const RenderJob& job, const BeamRa
   return render(job.scene, options, device);
 }
 
-FilmState combinedState(const RenderJob& job, const std::vector<BeamRange>& finished, SpectralHistogram film) {
-  FilmState state{jobFingerprint(job), {}, std::move(film)};
+FilmState combinedState(const RenderJob& job, const CompiledScene& plan, const std::vector<BeamRange>& finished,
+                        SpectralHistogram film) {
+  FilmState state{jobFingerprint(job, plan), {}, std::move(film)};
   for (const BeamRange& range : finished) {
     if (range.count == 0) continue;
     if (!state.ranges.empty() && state.ranges.back().first + state.ranges.back().count == range.first)

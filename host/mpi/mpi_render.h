@@ -26,6 +26,7 @@ RenderResult traceBeams(const Device& device, const RenderJob& job, const BeamRa
 // The state of the job's beams that every rank finished: `finished` holds
 // each rank's traced range (empty ones are left out, neighbours joined),
 // `film` the sum of their films.
-FilmState combinedState(const RenderJob& job, const std::vector<BeamRange>& finished, SpectralHistogram film);
+FilmState combinedState(const RenderJob& job, const CompiledScene& plan, const std::vector<BeamRange>& finished,
+                        SpectralHistogram film);
 
 }  // namespace spectrace::mpi

@@ -1,4 +1,3 @@
-#include "camera/pinhole_camera.h"
 #include "scene/scene.h"
 
 #include <atomic>
@@ -13,6 +12,8 @@
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
+
+#include "camera/pinhole_camera.h"
 
 namespace spectrace {
 namespace {
@@ -149,7 +150,7 @@ TEST_F(SceneTest, ExampleParsesWithTheRightValues) {
   EXPECT_EQ(s.camera.sensorHeightM, 0.024);
   EXPECT_EQ(s.camera.pixelsX, 360);
   EXPECT_EQ(s.camera.pixelsY, 240);
-  ASSERT_TRUE((pinholeOf(s.camera) != nullptr));
+  ASSERT_NE(pinholeOf(s.camera), nullptr);
   EXPECT_EQ(pinholeOf(s.camera)->distanceM, 0.05);
   EXPECT_EQ(pinholeOf(s.camera)->radiusM, 0.0005);
   EXPECT_EQ(s.camera.exposureS, 1.0);
@@ -225,7 +226,7 @@ TEST_F(SceneTest, DefaultsForOptionalSections) {
   EXPECT_EQ(s.camera.sensorHeightM, 0.024);
   EXPECT_EQ(s.camera.pixelsX, 360);
   EXPECT_EQ(s.camera.pixelsY, 240);
-  EXPECT_FALSE((pinholeOf(s.camera) != nullptr));
+  EXPECT_EQ(pinholeOf(s.camera), nullptr);
   EXPECT_EQ(s.camera.exposureS, 1.0);
   ASSERT_EQ(s.lights.size(), 1u);
   EXPECT_EQ(s.lights[0].label, "/lights/0");

@@ -64,6 +64,7 @@ class CameraChecker final : public CameraFieldCheck {
     c_.fail("/camera/" + key, what);
   }
   std::string got(const std::string& key, double fallback) const override { return c_.got("/camera/" + key, fallback); }
+  void checkLength(const std::string& key, double value) const override;
 
  private:
   const SceneChecker& c_;
@@ -83,6 +84,10 @@ void checkPoint(const SceneChecker& c, const std::string& ptr, const glm::dvec3&
 void checkLength(const SceneChecker& c, const std::string& ptr, double value) {
   if (!(std::isfinite(value) && value > 0.0 && value <= kMaxCoordinateM))
     c.fail(ptr, fmt::format("must be a length in metres, > 0 and <= {:g} (got {})", kMaxCoordinateM, c.got(ptr, value)));
+}
+
+void CameraChecker::checkLength(const std::string& key, double value) const {
+  spectrace::checkLength(c_, "/camera/" + key, value);
 }
 
 void checkPositive(const SceneChecker& c, const std::string& ptr, double value) {

@@ -90,15 +90,10 @@ void prepareFolder(const std::filesystem::path& output) {
 
 }  // namespace
 
-namespace {
-
-// The fingerprint of `job` traced as `plan`, its scene compiled with its seed and options.
-FilmFingerprint fingerprintFor(const RenderJob& job, const CompiledScene& plan) {
+FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) {
   return fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256, job.scene.observer,
                        job.seedValue(), job.tracer.specialisedFeatures, namedCompileOptions(job.plan));
 }
-
-}  // namespace
 
 RenderOptions RenderJob::renderOptions() const {
   RenderOptions options;
@@ -113,7 +108,7 @@ RenderOptions RenderJob::renderOptions() const {
 }
 
 FilmFingerprint jobFingerprint(const RenderJob& job) {
-  return fingerprintFor(job, compileScene(job.scene, job.seedValue(), job.plan));
+  return jobFingerprint(job, compileScene(job.scene, job.seedValue(), job.plan));
 }
 
 namespace {
@@ -270,7 +265,7 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
   // Compiled once: for the state's fingerprint and the render.
   CompiledScene plan = compileScene(job.scene, options.seed, options.plan);
   FilmFingerprint fingerprint;
-  if (!job.state.empty() || job.resume) fingerprint = fingerprintFor(job, plan);
+  if (!job.state.empty() || job.resume) fingerprint = jobFingerprint(job, plan);
   if (job.resume) {
     checkResume(job, *job.resume, fingerprint);
     options.loop.resumeFilm = &job.resume->histogram;
@@ -368,7 +363,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
     throw FilmStateError(fmt::format("the state's compile options cannot be used: {}", e.what()));
   }
   const CompiledScene plan = compileScene(job.scene, f.seed, job.plan);
-  if (std::string field = fingerprintDifference(f, fingerprintFor(job, plan)); !field.empty())
+  if (std::string field = fingerprintDifference(f, jobFingerprint(job, plan)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
   TracerOptions tracerOptions;
   tracerOptions.specialisedFeatures = f.specialisation;

@@ -129,6 +129,8 @@ BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_
 // The fingerprint of `job` rendered as it is set up (its scene compiled
 // with its options and seed): what its state files carry.
 FilmFingerprint jobFingerprint(const RenderJob& job);
+// The same for `plan`, the job's scene as a render compiled it.
+FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan);
 
 // The EXR header the renders write (spectrace:beams etc.).
 ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
