@@ -4,8 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/geometric.hpp>
+
 #include "device_shared.h"
 #include "film/pixel_variance.h"
+#include "kernel_lang.h"
 
 namespace spectrace {
 
@@ -33,35 +36,56 @@ struct PixelCounters {
   uint64_t squaredWeights;
 };
 
+// The shared resolve (shaders/resolve_pixel.h) in double over host counters.
+namespace host_resolve {
+using namespace device;
+using std::max;
+using glm::dot;
+struct HostPixel {
+  const uint64_t* counts;
+  const uint64_t* colourSums;
+  const std::array<double, 3>* binWeights;  // from the pixel's first bin
+};
+#define RESOLVE_REAL double
+#define RESOLVE_VEC3 glm::dvec3
+#define RESOLVE_PIXEL const HostPixel&
+inline uint64_t resolveBinCount(const HostPixel& pixel, uint bin) { return pixel.counts[bin]; }
+inline uint64_t resolveColourSum(const HostPixel& pixel, uint k) { return pixel.colourSums[k]; }
+inline glm::dvec3 resolveBinWeight(const HostPixel& pixel, uint bin) {
+  const auto& w = pixel.binWeights[bin];
+  return glm::dvec3(w[0], w[1], w[2]);
+}
+#include "resolve_pixel.h"
+#undef RESOLVE_REAL
+#undef RESOLVE_VEC3
+#undef RESOLVE_PIXEL
+}  // namespace host_resolve
+
 // Pixel p of `image` from its counters, in double. Bins outside the given
 // range hold 0 and would add exactly +0.0, so skipping them changes nothing.
 void resolvePixel(const PixelCounters& pixel, size_t p, const ResolveParameters& parameters, uint64_t unitsPerBeam,
                   RenderImage& image, FilmSummary* summary) {
-  glm::dvec3 xyz(0.0);
-  uint64_t total = 0, largest = 0;
-  for (uint32_t i = 0; i < pixel.bins; ++i) {
-    const uint64_t c = pixel.counts[i];
-    total += c;
-    largest = std::max(largest, c);
-    const auto& w = parameters.binWeights[pixel.firstBin + i];
-    xyz += double(c) * glm::dvec3(w[0], w[1], w[2]);
-  }
-  xyz *= parameters.irradiancePerCount;
-  if (parameters.useExactColour && pixel.colourSums) {
-    const double perBeam = parameters.irradiancePerCount * double(unitsPerBeam);
-    const double perUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
-    for (int k = 0; k < 3; ++k) xyz[k] = double(pixel.colourSums[k]) * perUnit;
-  }
-  const glm::dvec3 rgb = parameters.xyzToRgb * xyz;
+  host_resolve::ResolveFactors factors;
+  factors.bins = pixel.bins;
+  factors.exactColour = parameters.useExactColour && pixel.colourSums;
+  factors.irradiancePerCount = parameters.irradiancePerCount;
+  const double perBeam = parameters.irradiancePerCount * double(unitsPerBeam);
+  factors.xyzPerColourUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
+  const glm::dmat3 m = parameters.xyzToRgb;
+  factors.xyzToRgbRow0 = glm::dvec3(m[0][0], m[1][0], m[2][0]);
+  factors.xyzToRgbRow1 = glm::dvec3(m[0][1], m[1][1], m[2][1]);
+  factors.xyzToRgbRow2 = glm::dvec3(m[0][2], m[1][2], m[2][2]);
+  const host_resolve::PixelResolution sums = host_resolve::resolvePixel(
+      {pixel.counts, pixel.colourSums, parameters.binWeights.data() + pixel.firstBin}, factors);
   for (int k = 0; k < 3; ++k) {
-    image.xyz[p * 3 + k] = float(xyz[k]);
-    image.rgb[p * 3 + k] = float(rgb[k]);
+    image.xyz[p * 3 + k] = float(sums.xyz[k]);
+    image.rgb[p * 3 + k] = float(sums.rgb[k]);
   }
-  image.irradiance[p] = float(double(total) * parameters.irradiancePerCount);
+  image.irradiance[p] = float(sums.irradiance);
   if (parameters.beams > 0)
-    image.irradianceError[p] = irradianceErrorOfPixel(total, pixel.squaredWeights, parameters.beams, unitsPerBeam,
-                                                      parameters.irradiancePerCount, p);
-  if (summary) summary->largestCount = std::max(summary->largestCount, largest);
+    image.irradianceError[p] = irradianceErrorOfPixel(sums.total, pixel.squaredWeights, parameters.beams,
+                                                      unitsPerBeam, parameters.irradiancePerCount, p);
+  if (summary) summary->largestCount = std::max(summary->largestCount, sums.largest);
 }
 
 }  // namespace
