@@ -288,7 +288,7 @@ struct TraceConstants {
   float cameraFrontZ;       // metres: a counted beam comes from beyond this plane (the
                             // model's entrance; 0: the sensor), where the camera's body ends
   uint pixelsPerChunk;      // histogram chunk size in whole pixels
-  uint countersPerPixel;    // countersPerPixelOf(bins, exactColour, weightUnits > 1)
+  uint countersPerPixel;    // countersPerPixelOf(bins, the film's channel set)
   uint exactColour;         // 1: accumulate per-beam CMF values
   uint cmfCount;            // nodes of the CMF table
   float cmfLambdaMin;       // nm of node 0
@@ -317,16 +317,39 @@ struct TraceConstants {
   uint cameraDataFirst;     // its tables in the scene data, if it has any
 };
 
-// The film's counter layout, defined only here: each stored pixel owns
-// countersPerPixel 64-bit counters, its stored bins, then X, Y, Z when
-// exact colour is on, then the sum of squared weights when weights vary
-// (weightUnits > 1). host/film and the kernel both read it from these.
+// The film's channels, defined only here: each stored pixel owns
+// countersPerPixel 64-bit counters, the counters of each channel the film
+// stores in channel order. A film's channel set has bit c for channel c.
+// host/film (FilmLayout::channels, SpectralHistogram::channel) and the
+// kernel both read the layout from these.
+SPECTRACE_CONSTANT uint kFilmChannelBins = 0u;           // a count per stored bin (always stored)
+SPECTRACE_CONSTANT uint kFilmChannelColour = 1u;         // X, Y, Z sums of each beam's CMFs (exact colour)
+SPECTRACE_CONSTANT uint kFilmChannelSquaredWeight = 2u;  // the sum of squared weights (weightUnits > 1)
+SPECTRACE_CONSTANT uint kFilmChannelCount = 3u;
+// Counters per pixel of channel `channel` of a film storing `bins` bins.
+SPECTRACE_LAYOUT_FN uint filmChannelCounters(uint channel, uint bins) {
+  return channel == kFilmChannelBins ? bins : (channel == kFilmChannelColour ? 3u : 1u);
+}
+SPECTRACE_LAYOUT_FN bool filmStoresChannel(uint channelSet, uint channel) { return ((channelSet >> channel) & 1u) != 0u; }
+// The first counter of `channel` in a pixel's counters (for a channel not
+// stored: where it would go).
+SPECTRACE_LAYOUT_FN uint filmChannelOffset(uint channel, uint bins, uint channelSet) {
+  uint offset = 0u;
+  for (uint c = 0u; c < channel; ++c)
+    if (filmStoresChannel(channelSet, c)) offset += filmChannelCounters(c, bins);
+  return offset;
+}
+SPECTRACE_LAYOUT_FN uint filmChannelSetOf(bool exactColour, bool weighted) {
+  return (1u << kFilmChannelBins) | (exactColour ? 1u << kFilmChannelColour : 0u) |
+         (weighted ? 1u << kFilmChannelSquaredWeight : 0u);
+}
+SPECTRACE_LAYOUT_FN uint countersPerPixelOf(uint bins, uint channelSet) {
+  return filmChannelOffset(kFilmChannelCount, bins, channelSet);
+}
+// The kernel's two fixed offsets (bins come first, colour follows them).
 SPECTRACE_LAYOUT_FN uint colourCounterOffset(uint bins) { return bins; }
 SPECTRACE_LAYOUT_FN uint squaredWeightCounterOffset(uint bins, bool exactColour) {
-  return bins + (exactColour ? 3u : 0u);
-}
-SPECTRACE_LAYOUT_FN uint countersPerPixelOf(uint bins, bool exactColour, bool weighted) {
-  return squaredWeightCounterOffset(bins, exactColour) + (weighted ? 1u : 0u);
+  return filmChannelOffset(kFilmChannelSquaredWeight, bins, filmChannelSetOf(exactColour, true));
 }
 
 // Totals of the trace pass, besides the histogram.
@@ -458,6 +481,10 @@ static_assert(offsetof(ResolvedPixel, totalCount) == 32);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(CeilingPush) == 56);
 static_assert(sizeof(ResolvePush) == 8);
+static_assert(colourCounterOffset(7) == filmChannelOffset(kFilmChannelColour, 7, filmChannelSetOf(true, false)),
+              "the kernel's colour offset is the channel list's");
+static_assert(countersPerPixelOf(7, filmChannelSetOf(true, true)) == 11 &&
+              countersPerPixelOf(7, filmChannelSetOf(false, false)) == 7);
 }  // namespace spectrace::device
 
 namespace spectrace {

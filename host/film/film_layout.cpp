@@ -3,44 +3,58 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace spectrace {
+
+std::vector<StoredChannel> FilmLayout::channels() const {
+  std::vector<StoredChannel> list;
+  const uint32_t set = channelSet();
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
+    if (!device::filmStoresChannel(set, c)) continue;
+    const bool spectral = c == device::kFilmChannelBins;
+    list.push_back({c, device::filmChannelOffset(c, storedBins, set), device::filmChannelCounters(c, storedBins),
+                    spectral ? firstStoredBin : 0, device::filmChannelCounters(c, bins)});
+  }
+  return list;
+}
 
 void packDeviceCounters(const SpectralHistogram& histogram, const FilmLayout& film, size_t firstPixel,
                         std::span<uint64_t> out) {
-  const uint32_t stride = film.countersPerPixel(), stored = film.storedBins, first = film.firstStoredBin;
-  for (uint64_t p = 0; p < film.pixelCount(); ++p) {
-    if (film.storesPixel(p)) continue;
-    for (uint32_t b = 0; b < film.bins; ++b)
-      if (histogram.counts[p * film.bins + b] != 0)
-        throw std::invalid_argument("counts in pixels outside the stored window");
+  const std::vector<StoredChannel> channels = film.channels();
+  // What the device does not store must hold nothing: pixels outside the
+  // window, and the bins of a trimmed spectrum outside its stored range.
+  for (const StoredChannel& ch : channels) {
+    const std::vector<uint64_t>& values = histogram.channel(ch.channel);
+    for (uint64_t p = 0; p < film.pixelCount(); ++p) {
+      const uint64_t* pixel = values.data() + p * ch.hostCounters;
+      for (uint32_t i = 0; i < ch.hostCounters; ++i) {
+        if (pixel[i] == 0) continue;
+        if (!film.storesPixel(p))
+          throw std::invalid_argument(fmt::format("{} in pixels outside the stored window", filmChannelName(ch.channel)));
+        if (i < ch.hostFirst || i >= ch.hostFirst + ch.counters)
+          throw std::invalid_argument("counts in bins the trimmed spectrum does not store");
+      }
+    }
   }
-  const uint32_t colour = device::colourCounterOffset(stored);
-  const uint32_t squared = device::squaredWeightCounterOffset(stored, film.exactColour);
+  const uint32_t stride = film.countersPerPixel();
   for (size_t local = 0; local < out.size() / stride; ++local) {
     const size_t pixel = film.fullPixelOfStored(firstPixel + local);
-    uint64_t* dst = out.data() + local * stride;
-    const auto bins = histogram.counts.begin() + pixel * film.bins;
-    for (uint32_t b = 0; b < film.bins; ++b) {
-      if ((b < first || b >= first + stored) && bins[b] != 0)
-        throw std::invalid_argument("counts in bins the trimmed spectrum does not store");
-    }
-    std::copy_n(bins + first, stored, dst);
-    if (film.exactColour) std::copy_n(histogram.colourSums.begin() + pixel * 3, 3, dst + colour);
-    if (film.weighted()) dst[squared] = histogram.squaredWeightSums[pixel];
+    for (const StoredChannel& ch : channels)
+      std::copy_n(histogram.channel(ch.channel).begin() + pixel * ch.hostCounters + ch.hostFirst, ch.counters,
+                  out.data() + local * stride + ch.deviceOffset);
   }
 }
 
 void unpackDeviceCounters(std::span<const uint64_t> counters, const FilmLayout& film, size_t firstPixel,
                           SpectralHistogram& histogram) {
-  const uint32_t stride = film.countersPerPixel(), stored = film.storedBins;
-  const uint32_t colour = device::colourCounterOffset(stored);
-  const uint32_t squared = device::squaredWeightCounterOffset(stored, film.exactColour);
+  const std::vector<StoredChannel> channels = film.channels();
+  const uint32_t stride = film.countersPerPixel();
   for (size_t local = 0; local < counters.size() / stride; ++local) {
     const size_t pixel = film.fullPixelOfStored(firstPixel + local);
-    const uint64_t* src = counters.data() + local * stride;
-    std::copy(src, src + stored, histogram.counts.begin() + pixel * film.bins + film.firstStoredBin);
-    if (film.exactColour) std::copy_n(src + colour, 3, histogram.colourSums.begin() + pixel * 3);
-    if (film.weighted()) histogram.squaredWeightSums[pixel] = src[squared];
+    for (const StoredChannel& ch : channels)
+      std::copy_n(counters.data() + local * stride + ch.deviceOffset, ch.counters,
+                  histogram.channel(ch.channel).begin() + pixel * ch.hostCounters + ch.hostFirst);
   }
 }
 

@@ -8,11 +8,22 @@
 // stored counters. Compare Mitsuba 3's Film and pbrt-v4's film.h.
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "device_shared.h"
 #include "film/spectral_histogram.h"
 
 namespace spectrace {
+
+// Where one channel's counters of a pixel are, on the device and on the
+// host: a stored pixel's counters [deviceOffset, deviceOffset + counters)
+// are the host histogram's [hostFirst, hostFirst + counters) of the
+// pixel's hostCounters (the bins: a trimmed spectrum stores some of them).
+struct StoredChannel {
+  uint32_t channel;  // device_shared.h, kFilmChannel*
+  uint32_t deviceOffset, counters;
+  uint32_t hostFirst, hostCounters;
+};
 
 // Columns [x0, x0 + width) and rows [y0, y0 + height) of the sensor.
 struct PixelWindow {
@@ -32,7 +43,10 @@ struct FilmLayout {
   uint32_t weightUnits = 1;   // what a full-weight beam adds to its bin (1 or kWeightUnitsFractional)
 
   bool weighted() const { return weightUnits != 1; }
-  uint32_t countersPerPixel() const { return device::countersPerPixelOf(storedBins, exactColour, weighted()); }
+  // The channels stored (bit c for channel c), and each with its place.
+  uint32_t channelSet() const { return device::filmChannelSetOf(exactColour, weighted()); }
+  std::vector<StoredChannel> channels() const;
+  uint32_t countersPerPixel() const { return device::countersPerPixelOf(storedBins, channelSet()); }
   uint64_t pixelCount() const { return uint64_t(pixelsX) * pixelsY; }
   uint64_t storedPixelCount() const { return uint64_t(window.width) * window.height; }
   uint64_t storedCounterCount() const { return storedPixelCount() * countersPerPixel(); }

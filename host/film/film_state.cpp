@@ -154,10 +154,8 @@ void writeFilmState(const std::filesystem::path& file, const FilmState& state) {
   json header = {{"fingerprint", toJson(state.fingerprint)},
                  {"ranges", json::array()},
                  {"counted_beams", h.countedBeams},
-                 {"units_per_beam", h.unitsPerBeam},
-                 {"counts", h.counts.size()},
-                 {"colour_sums", h.colourSums.size()},
-                 {"squared_weight_sums", h.squaredWeightSums.size()}};
+                 {"units_per_beam", h.unitsPerBeam}};
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) header[filmChannelName(c)] = h.channel(c).size();
   for (const BeamRange& r : state.ranges) header["ranges"].push_back({r.first, r.count});
   std::string text = header.dump();
   text.append((8 - (kPrefixBytes + text.size()) % 8) % 8, ' ');  // the arrays start 8-byte aligned
@@ -167,9 +165,7 @@ void writeFilmState(const std::filesystem::path& file, const FilmState& state) {
   bytes.insert(bytes.end(), reinterpret_cast<const unsigned char*>(prefix),
                reinterpret_cast<const unsigned char*>(prefix) + sizeof prefix);
   bytes.insert(bytes.end(), text.begin(), text.end());
-  appendWords(bytes, h.counts);
-  appendWords(bytes, h.colourSums);
-  appendWords(bytes, h.squaredWeightSums);
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) appendWords(bytes, h.channel(c));
   const auto digest = sha256(bytes.data(), bytes.size());
   bytes.insert(bytes.end(), digest.begin(), digest.end());
 
@@ -222,15 +218,17 @@ FilmState readFilmState(const std::filesystem::path& file) {
     // that follow before anything is allocated, so a header cannot ask for
     // more memory than its file holds.
     const uint64_t pixels = uint64_t(f.pixelsX) * f.pixelsY;
-    const uint64_t wordsPerPixel = uint64_t(f.bins) + (f.exactColour ? 3 : 0) + (f.weightUnits != 1 ? 1 : 0);
+    const uint64_t wordsPerPixel =
+        device::countersPerPixelOf(f.bins, device::filmChannelSetOf(f.exactColour, f.weightUnits != 1));
     if (wordsPerPixel != 0 && pixels > (body - offset) / sizeof(uint64_t) / wordsPerPixel)
       throw fail(fmt::format("its film ({} x {} pixels, {} bins) needs more values than the file holds", f.pixelsX,
                              f.pixelsY, f.bins));
     SpectralHistogram& h = state.histogram;
     h = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
     h.countedBeams = header.at("counted_beams").get<uint64_t>();
-    for (auto [key, words] : {std::pair{"counts", &h.counts}, std::pair{"colour_sums", &h.colourSums},
-                              std::pair{"squared_weight_sums", &h.squaredWeightSums}}) {
+    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
+      const char* key = filmChannelName(c);
+      std::vector<uint64_t>* words = &h.channel(c);
       const size_t n = header.at(key).get<size_t>();
       if (n != words->size())
         throw fail(fmt::format("{} holds {} values where its film has {}", key, n, words->size()));

@@ -4,9 +4,23 @@
 // order-independent and bit-reproducible, so partial renders merge exactly.
 #include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "device_shared.h"
+
 namespace spectrace {
+
+// A channel's name in state files and messages.
+inline const char* filmChannelName(uint32_t c) {
+  switch (c) {
+    case device::kFilmChannelBins: return "counts";
+    case device::kFilmChannelColour: return "colour_sums";
+    case device::kFilmChannelSquaredWeight: return "squared_weight_sums";
+    default: return "?";
+  }
+}
 
 struct SpectralHistogram {
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
@@ -25,13 +39,33 @@ struct SpectralHistogram {
 
   SpectralHistogram() = default;
   SpectralHistogram(uint32_t px, uint32_t py, uint32_t nbins, bool exactColour = false, uint64_t units = 1)
-      : pixelsX(px), pixelsY(py), bins(nbins), unitsPerBeam(units), counts(size_t(px) * py * nbins, 0),
-        colourSums(exactColour ? size_t(px) * py * 3 : 0, 0), squaredWeightSums(units != 1 ? size_t(px) * py : 0, 0) {}
+      : pixelsX(px), pixelsY(py), bins(nbins), unitsPerBeam(units) {
+    const uint32_t held = device::filmChannelSetOf(exactColour, units != 1);
+    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+      if (device::filmStoresChannel(held, c)) channel(c).assign(size_t(px) * py * device::filmChannelCounters(c, nbins), 0);
+  }
+
+  // Channel `c`'s counters (device_shared.h, kFilmChannel*): the one place
+  // that names where each channel's counters are held; merge, the state
+  // file, the MPI reduce and pack/unpack iterate over the channels.
+  std::vector<uint64_t>& channel(uint32_t c) {
+    return const_cast<std::vector<uint64_t>&>(std::as_const(*this).channel(c));
+  }
+  const std::vector<uint64_t>& channel(uint32_t c) const {
+    switch (c) {
+      case device::kFilmChannelBins: return counts;
+      case device::kFilmChannelColour: return colourSums;
+      case device::kFilmChannelSquaredWeight: return squaredWeightSums;
+      default: throw std::out_of_range("no film channel " + std::to_string(c));
+    }
+  }
+  // The channels held (bit c for channel c).
+  uint32_t channelSet() const { return device::filmChannelSetOf(hasExactColour(), isWeighted()); }
 
   bool hasExactColour() const { return !colourSums.empty(); }
   bool isWeighted() const { return unitsPerBeam != 1; }
   bool sameShape(const SpectralHistogram& o) const {
-    return o.pixelsX == pixelsX && o.pixelsY == pixelsY && o.bins == bins && o.colourSums.size() == colourSums.size() &&
+    return o.pixelsX == pixelsX && o.pixelsY == pixelsY && o.bins == bins && o.channelSet() == channelSet() &&
            o.unitsPerBeam == unitsPerBeam;
   }
 
@@ -45,9 +79,11 @@ struct SpectralHistogram {
   // Adds another histogram of the same shape (a render over other beams).
   void merge(const SpectralHistogram& other) {
     if (!sameShape(other)) throw std::invalid_argument("cannot merge histograms of different shapes");
-    for (size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
-    for (size_t i = 0; i < colourSums.size(); ++i) colourSums[i] += other.colourSums[i];
-    for (size_t i = 0; i < squaredWeightSums.size(); ++i) squaredWeightSums[i] += other.squaredWeightSums[i];
+    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {  // every channel merges by exact addition
+      std::vector<uint64_t>& mine = channel(c);
+      const std::vector<uint64_t>& theirs = other.channel(c);
+      for (size_t i = 0; i < mine.size(); ++i) mine[i] += theirs[i];
+    }
     countedBeams += other.countedBeams;
   }
 };

@@ -60,15 +60,13 @@ void World::sumOnRoot(SpectralHistogram& film) const {
   // Every rank compiled the same scene, so the shapes agree; a mismatch
   // (a scene file changed under a running job) must fail on every rank,
   // not leave rank 0 summing arrays of different lengths.
-  const std::array<uint64_t, 7> shape{film.pixelsX, film.pixelsY, film.bins, film.unitsPerBeam, film.counts.size(),
-                                      film.colourSums.size(), film.squaredWeightSums.size()};
-  std::array<uint64_t, 7> rootShape = shape;
+  std::vector<uint64_t> shape{film.pixelsX, film.pixelsY, film.bins, film.unitsPerBeam};
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) shape.push_back(film.channel(c).size());
+  std::vector<uint64_t> rootShape = shape;
   MPI_Bcast(rootShape.data(), int(rootShape.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
   if (largestCode(shape == rootShape ? 0 : 1) != 0)
     throw std::runtime_error("the ranks' films differ in shape (was the scene file changed during the render?)");
-  sumArrayOnRoot(film.counts, isRoot());
-  sumArrayOnRoot(film.colourSums, isRoot());
-  sumArrayOnRoot(film.squaredWeightSums, isRoot());
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) sumArrayOnRoot(film.channel(c), isRoot());
   std::vector<uint64_t> counted{film.countedBeams};
   sumArrayOnRoot(counted, isRoot());
   film.countedBeams = counted[0];
