@@ -192,6 +192,10 @@ SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
 // SceneData::append (host/device_data/scene_data.h). The
 // materials' reflectance tables are its first tables.
 
+// Material kinds (spectrace::MaterialType, at the end of this file, takes
+// its values from these). One kernel unit per kind in
+// shaders/materials/<kind>.h, one host unit in
+// host/materials/<kind>_material.cpp.
 SPECTRACE_CONSTANT uint kMaterialAbsorber = 0;
 SPECTRACE_CONSTANT uint kMaterialDiffuse = 1;
 SPECTRACE_CONSTANT uint kMaterialMirror = 2;
@@ -497,6 +501,13 @@ enum class LightType : uint32_t {
   Laser = device::kLightLaser,
 };
 static_assert(uint32_t(LightType::Laser) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
+// The material kinds on the host, numbered as the kernel numbers them.
+enum class MaterialType : uint32_t {
+  Absorber = device::kMaterialAbsorber,
+  Diffuse = device::kMaterialDiffuse,
+  Mirror = device::kMaterialMirror,
+  Dielectric = device::kMaterialDielectric,
+};
 }  // namespace spectrace
 #endif
 

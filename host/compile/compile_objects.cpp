@@ -10,6 +10,7 @@
 #include "camera/camera_frame.h"
 #include "compile/bvh.h"
 #include "lights/light_shared.h"
+#include "materials/material_type.h"
 
 namespace spectrace {
 namespace {
@@ -122,23 +123,12 @@ void placeShape(const Shape& shape, const CameraFrame& frame, uint32_t material,
   }
 }
 
+// The record's kind; the rest is the kind's unit's (its pack).
 device::Material deviceMaterial(const SurfaceMaterial& material, DeviceScene& device) {
-  device::Material m{};
-  m.type = uint32_t(material.type);
-  m.reflectanceCount = 1;
-  if (material.type == MaterialType::Diffuse || material.type == MaterialType::Mirror) {
-    const ReflectanceTable table = reflectanceTable(material);
-    m.reflectanceCount = uint32_t(table.values.size());
-    m.reflectanceLambda0 = table.lambda0;
-    m.reflectanceNodesPerNm = table.nodesPerNm;
-    m.reflectanceFirst = device.data.append(std::span<const float>(table.values));
-  } else {
-    const float none = 0.0f;
-    m.reflectanceFirst = device.data.append(std::span<const float>(&none, 1));
-  }
-  m.sellmeierB = glm::vec3(float(material.sellmeierB[0]), float(material.sellmeierB[1]), float(material.sellmeierB[2]));
-  m.sellmeierC = glm::vec3(float(material.sellmeierC[0]), float(material.sellmeierC[1]), float(material.sellmeierC[2]));
-  return m;
+  device::Material record{};
+  record.type = uint32_t(material.type);
+  materialTypeUnit(material.type).pack(material, record, device.data);
+  return record;
 }
 
 // Every primitive in one leaf under a root that bounds them all: the
@@ -165,46 +155,17 @@ BuiltBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds) {
 
 }  // namespace
 
-ReflectanceTable reflectanceTable(const SurfaceMaterial& material) {
-  ReflectanceTable table;
-  const std::vector<double>& nm = material.reflectanceNm;
-  if (nm.size() < 2) {
-    table.lambda0 = nm.empty() ? 0.0f : float(nm.front());
-    table.nodesPerNm = 1.0f;
-    table.values.push_back(float(material.reflectance.empty() ? 0.0 : material.reflectance.front()));
-    return table;
-  }
-  // The grid step: evenly spaced nodes (tabulated data usually are) are the
-  // grid, exactly; otherwise 1 nm or the smallest spacing if finer, which
-  // holds every node to within that step. At most 100k nodes either way.
-  constexpr double kMaxNodes = 100000;
-  double smallest = nm[1] - nm[0], largest = smallest;
-  for (size_t i = 1; i < nm.size(); ++i) {
-    smallest = std::min(smallest, nm[i] - nm[i - 1]);
-    largest = std::max(largest, nm[i] - nm[i - 1]);
-  }
-  double step = largest - smallest <= 1e-9 * largest ? smallest : std::min(1.0, smallest);
-  const double span = nm.back() - nm.front();
-  step = std::max(step, span / (kMaxNodes - 1));
-  const size_t count = size_t(std::ceil(span / step - 1e-9)) + 1;
-  step = span / double(count - 1);
-  table.lambda0 = float(nm.front());
-  table.nodesPerNm = float(1.0 / step);
-  for (size_t i = 0; i < count; ++i) table.values.push_back(float(material.reflectanceAt(nm.front() + double(i) * step)));
-  return table;
-}
-
 void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device) {
   device::TraceConstants& c = device.constants;
   c.maxBounces = scene.render.maxBounces;
   if (scene.objects.empty()) return;
   const CameraFrame frame = CameraFrame::fromCamera(scene.camera);
   std::vector<PlacedPrimitive> placed;
-  bool anyDiffuse = false;
+  bool connects = false;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
     device.materials.push_back(deviceMaterial(object.material, device));
-    anyDiffuse = anyDiffuse || object.material.type == MaterialType::Diffuse;
+    connects = connects || materialTypeUnit(object.material.type).connectsToCamera;
     placeShape(object.shape, frame, uint32_t(i), placed);
   }
   std::vector<PrimitiveBounds> bounds;
@@ -215,7 +176,7 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
   device.primitives.reserve(placed.size());
   for (uint32_t index : bvh.order) device.primitives.push_back(placed[index].primitive);
   c.objectPrimitives = uint32_t(device.primitives.size());
-  c.connect = options.connect && anyDiffuse ? 1u : 0u;
+  c.connect = options.connect && connects ? 1u : 0u;
 }
 
 }  // namespace spectrace

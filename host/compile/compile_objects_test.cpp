@@ -1,6 +1,5 @@
 // Scene objects in the compiler: which shortcuts each kind of object turns
-// off (compile/shortcuts.h), the primitives and their BVH, the reflectance
-// tables, and the film's weights under camera connections.
+// off (compile/shortcuts.h), the primitives and their BVH, and the film's weights under camera connections.
 #include "compile/compile_objects.h"
 
 #include <gtest/gtest.h>
@@ -164,20 +163,6 @@ TEST(ObjectValidation, AGlassMeshMustFaceOutwards) {
     EXPECT_NE(std::string(e.what()).find("/objects/0/material"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("face outwards"), std::string::npos) << e.what();
   }
-}
-
-TEST(ReflectanceTables, EvenlySpacedNodesAreReproducedExactly) {
-  SurfaceMaterial m;
-  m.type = MaterialType::Diffuse;
-  m.reflectanceNm = {400.0, 405.0, 410.0, 415.0};
-  m.reflectance = {0.1, 0.5, 0.25, 0.75};
-  const ReflectanceTable table = reflectanceTable(m);
-  ASSERT_EQ(table.values.size(), 4u);
-  EXPECT_FLOAT_EQ(table.nodesPerNm, 0.2f);
-  for (size_t i = 0; i < 4; ++i) EXPECT_FLOAT_EQ(table.values[i], float(m.reflectance[i]));
-  m.reflectanceNm = {550.0};
-  m.reflectance = {0.3};
-  EXPECT_EQ(reflectanceTable(m).values, std::vector<float>{0.3f});
 }
 
 }  // namespace

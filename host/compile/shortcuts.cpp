@@ -1,9 +1,8 @@
 #include "compile/shortcuts.h"
 
-#include <algorithm>
-#include <functional>
-
 #include <fmt/format.h>
+
+#include "materials/material_type.h"
 
 namespace spectrace {
 
@@ -54,7 +53,7 @@ namespace {
 // away, so every argument about where beams can land still holds).
 std::string redirectingObject(const Scene& scene) {
   for (const SceneObject& object : scene.objects)
-    if (object.material.type != MaterialType::Absorber)
+    if (materialTypeUnit(object.material.type).redirectsBeams)
       return fmt::format("{} is a {} {}, which can send a beam to the camera along a path that is not a straight line "
                          "from its light",
                          object.label, materialTypeName(object.material.type), shapeTypeName(object.shape.type));
@@ -66,11 +65,7 @@ std::string redirectingObject(const Scene& scene) {
 std::string wavelengthDependentObject(const Scene& scene) {
   for (const SceneObject& object : scene.objects) {
     const SurfaceMaterial& m = object.material;
-    bool varies = false;
-    if (m.type == MaterialType::Diffuse || m.type == MaterialType::Mirror)
-      varies = std::adjacent_find(m.reflectance.begin(), m.reflectance.end(), std::not_equal_to<>()) != m.reflectance.end();
-    if (m.type == MaterialType::Dielectric) varies = m.sellmeierC != std::array<double, 3>{0.0, 0.0, 0.0};
-    if (varies)
+    if (materialTypeUnit(m.type).variesWithWavelength(m))
       return fmt::format("{} ({} {}) treats wavelengths differently, so where a beam lands depends on its wavelength",
                          object.label, materialTypeName(m.type), shapeTypeName(object.shape.type));
   }

@@ -1,7 +1,7 @@
 // An entry of "objects": a shape (rect, disk, sphere, or a mesh from an OBJ
-// file) and its material. Placement keys mean what they mean for rect and
-// disk lights; reflectances take every form a light's spd takes, plus a
-// number and the ColorChecker patch names.
+// file) and its material, read by the material kind's unit
+// (materials/material_type.h). Placement keys mean what they mean for rect
+// and disk lights.
 #include "scene/object_field.h"
 
 #include <algorithm>
@@ -11,11 +11,10 @@
 #include <glm/geometric.hpp>
 
 #include "lights/light_shared.h"
+#include "materials/material_type.h"
 #include "scene/obj_mesh.h"
 #include "scene/scene_limits.h"
 #include "scene/spd_field.h"
-#include "spectrum/cie_data.h"
-#include "spectrum/glass.h"
 
 namespace spectrace {
 
@@ -32,21 +31,11 @@ using jf::require;
 
 namespace {
 
-// A constant reflectance is one node; where it sits does not matter.
-constexpr double kConstantNodeNm = 550.0;
-
 const Keys kShapeTypes = {"rect", "disk", "sphere", "mesh"};
-const Keys kMaterialTypes = {"absorber", "diffuse", "mirror", "dielectric"};
-// Every key some object or material takes (to name a typo such as "typ"
+// Every key some object takes (to name a typo such as "typ"
 // before complaining that "type" is missing).
 const Keys kAnyObjectKey = {"name",     "type",     "material", "center", "normal",
                             "u_axis",   "size_m",   "radius_m", "file",   "transform"};
-const Keys kAnyMaterialKey = {"type", "reflectance", "glass", "sellmeier", "ior"};
-const Keys kSpdForms = {"blackbody_k", "csv", "table", "lambda_nm", "value"};
-
-const char* kReflectanceHelp =
-    "a number in [0, 1], a ColorChecker patch name such as \"dark_skin\", or a spectrum of values in [0, 1]: "
-    "{\"csv\": \"file.csv\"}, {\"table\": [[nm, value], ...]}, {\"lambda_nm\": [...], \"value\": [...]}";
 
 Keys shapeKeys(ShapeType type) {
   switch (type) {
@@ -58,142 +47,52 @@ Keys shapeKeys(ShapeType type) {
   return {};
 }
 
-Keys patchNames() {
-  const CsvTable& t = colorCheckerTable();
-  return Keys(t.columns.begin(), t.columns.end());
+// The scene's spectrum forms (spd_field.h), for a material unit's
+// spectrum-valued keys.
+class SpdFieldReader final : public SpectrumFieldReader {
+ public:
+  SpdFieldReader(const jf::Source& c, const SpectrumRange& range) : c_(c), range_(range) {}
+  FieldSpectrum read(const Json& v, const std::string& ptr) const override {
+    ResolvedSpd resolved = resolveSpd(c_, v, ptr, range_);
+    return {std::move(resolved.spd), std::move(resolved.label), std::move(resolved.file)};
+  }
+
+ private:
+  const jf::Source& c_;
+  const SpectrumRange& range_;
+};
+
+Keys materialTypeNames() {
+  Keys names;
+  for (const MaterialTypeUnit* unit : materialTypeUnits()) names.push_back(unit->name);
+  return names;
 }
 
-void parseReflectance(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
-                      SurfaceMaterial& m) {
-  if (v.is_number()) {
-    const double r = jf::getNumber(c, v, p);  // [0, 1] is validateScene's rule
-    m.reflectanceNm = {kConstantNodeNm};
-    m.reflectance = {r};
-    m.reflectanceLabel = jf::fmtNum(r);
-    return;
-  }
-  if (v.is_string()) {
-    const std::string name = v.get<std::string>();
-    const CsvTable& patches = colorCheckerTable();
-    if (auto it = std::find(patches.columns.begin(), patches.columns.end(), name); it != patches.columns.end()) {
-      m.reflectanceNm = patches.lambdaNm;
-      m.reflectance = patches.data[size_t(it - patches.columns.begin())];
-      m.reflectanceLabel = name;
-      return;
-    }
-    if (!cieIlluminant(name)) {
-      const Keys names = patchNames();
-      c.fail(p, fmt::format("unknown reflectance {}{} (ColorChecker patches: {})", jsonQuoted(name),
-                            jf::suggestion(name, names), jf::joinKeys(names)));
-    }
-    // A CIE illuminant name is a spectrum too; validateScene refuses its
-    // values above 1.
-  } else if (v.is_object()) {
-    if (find(v, "line_nm"))
-      c.fail(child(p, "line_nm"),
-             "a spectral line is light, not a reflectance: a reflectance gives a value in [0, 1] at every "
-             "wavelength (a number for a constant one, or a table)");
-    if (std::none_of(kSpdForms.begin(), kSpdForms.end(), [&](std::string_view k) { return find(v, std::string(k)); })) {
-      checkObject(c, v, p, {"blackbody_k", "csv", "column", "table", "lambda_nm", "value"}, "a reflectance");
-      c.fail(p, fmt::format("must be {} (got an object with none of these)", kReflectanceHelp));
-    }
-  } else {
-    c.fail(p, fmt::format("must be {} (got {})", kReflectanceHelp, describe(v)));
-  }
-  ResolvedSpd resolved = resolveSpd(c, v, p, range);
-  if (resolved.spd.isLine())
-    c.fail(p, "a single spectral line is not a reflectance: give a number for a constant reflectance, or a table");
-  m.reflectanceNm = std::move(resolved.spd.lambdaNm);
-  m.reflectance = std::move(resolved.spd.value);
-  m.reflectanceLabel = std::move(resolved.label);
-  m.reflectanceFile = std::move(resolved.file);
-}
-
-std::array<double, 3> getThree(const jf::Source& c, const Json& v, const std::string& p, const char* names) {
-  if (!v.is_array() || v.size() != 3)
-    c.fail(p, fmt::format("must be an array of 3 finite numbers {} (got {})", names, describe(v)));
-  std::array<double, 3> out{};
-  for (size_t i = 0; i < 3; ++i) out[i] = jf::getNumber(c, v[i], child(p, i));
-  return out;
-}
-
-void parseDielectric(const jf::Source& c, const Json& v, const std::string& p, SurfaceMaterial& m) {
-  static const Keys kForms = {"glass", "sellmeier", "ior"};
-  checkObject(c, v, p, {"type", "glass", "sellmeier", "ior"}, "a dielectric material");
-  std::vector<std::string_view> present;
-  for (auto f : kForms)
-    if (find(v, std::string(f))) present.push_back(f);
-  const std::vector<std::string> glasses = glassNames();
-  const Keys glassKeys(glasses.begin(), glasses.end());
-  if (present.empty())
-    c.fail(p, fmt::format("a dielectric needs one of \"glass\" (one of: {}), \"sellmeier\" ({{\"b\": [b1, b2, b3], "
-                          "\"c_um2\": [c1, c2, c3]}}) or \"ior\" (a constant refractive index)",
-                          jf::joinKeys(glassKeys)));
-  if (present.size() > 1)
-    c.fail(p, fmt::format("ambiguous refractive index: has both {} and {}; use exactly one of {}",
-                          jsonQuoted(present[0]), jsonQuoted(present[1]), jf::joinKeys(kForms)));
-  if (present[0] == "glass") {
-    const std::string gp = child(p, "glass");
-    const std::string name = jf::getString(c, v.at("glass"), gp);
-    const SellmeierGlass* glass = glassNamed(name);
-    if (!glass)
-      c.fail(gp, fmt::format("unknown glass {}{} (known: {})", jsonQuoted(name), jf::suggestion(name, glassKeys),
-                             jf::joinKeys(glassKeys)));
-    m.sellmeierB = glass->b;
-    m.sellmeierC = glass->cUm2;
-    m.glassLabel = glass->name;
-  } else if (present[0] == "sellmeier") {
-    const std::string sp = child(p, "sellmeier");
-    const Json& s = v.at("sellmeier");
-    checkObject(c, s, sp, {"b", "c_um2"}, "sellmeier");
-    m.sellmeierB = getThree(c, require(c, s, sp, "b"), child(sp, "b"), "[b1, b2, b3]");
-    m.sellmeierC = getThree(c, require(c, s, sp, "c_um2", " (in square micrometres)"), child(sp, "c_um2"),
-                            "[c1, c2, c3] in um^2");
-    m.glassLabel = "sellmeier";
-  } else {
-    const std::string ip = child(p, "ior");
-    const double n = jf::getNumber(c, v.at("ior"), ip);
-    if (!(n >= 1.0 && n <= kMaxIor))
-      c.fail(ip, fmt::format("must be a refractive index, >= 1 and <= {} (got {})", jf::fmtNum(kMaxIor),
-                             describe(v.at("ior"))));
-    m.sellmeierB = {n * n - 1.0, 0.0, 0.0};
-    m.sellmeierC = {0.0, 0.0, 0.0};
-    m.glassLabel = "ior " + jf::fmtNum(n);
-  }
+// Every key some material takes, "type" first.
+Keys anyMaterialKey() {
+  Keys keys = {"type"};
+  for (const MaterialTypeUnit* unit : materialTypeUnits())
+    for (std::string_view key : unit->keys)
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  return keys;
 }
 
 SurfaceMaterial parseMaterial(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range) {
   if (!v.is_object())
     c.fail(p, fmt::format("must be an object such as {{\"type\": \"diffuse\", \"reflectance\": 0.5}} (got {})",
                           describe(v)));
-  if (!find(v, "type")) checkObject(c, v, p, kAnyMaterialKey, "a material");
+  if (!find(v, "type")) checkObject(c, v, p, anyMaterialKey(), "a material");
   const std::string tp = child(p, "type");
+  const Keys types = materialTypeNames();
   const std::string type =
-      jf::getString(c, require(c, v, p, "type", fmt::format(" (one of: {})", jf::joinKeys(kMaterialTypes))), tp);
-  SurfaceMaterial m;
-  if (type == "absorber") {
-    checkObject(c, v, p, {"type"}, "an absorber material");
-    m.type = MaterialType::Absorber;
-  } else if (type == "diffuse" || type == "mirror") {
-    checkObject(c, v, p, {"type", "reflectance"}, fmt::format("a {} material", type));
-    m.type = type == "diffuse" ? MaterialType::Diffuse : MaterialType::Mirror;
-    const std::string rp = child(p, "reflectance");
-    if (const Json* r = find(v, "reflectance")) {
-      parseReflectance(c, *r, rp, range, m);
-    } else if (m.type == MaterialType::Mirror) {
-      m.reflectanceNm = {kConstantNodeNm};
-      m.reflectance = {1.0};
-      m.reflectanceLabel = jf::fmtNum(1.0);  // (not = "1": a GCC 12 -Wrestrict false positive)
-    } else {
-      require(c, v, p, "reflectance", fmt::format(" ({})", kReflectanceHelp));
-    }
-  } else if (type == "dielectric") {
-    m.type = MaterialType::Dielectric;
-    parseDielectric(c, v, p, m);
-  } else {
+      jf::getString(c, require(c, v, p, "type", fmt::format(" (one of: {})", jf::joinKeys(types))), tp);
+  const MaterialTypeUnit* unit = materialTypeUnitNamed(type);
+  if (!unit)
     c.fail(tp, fmt::format("unknown material type {}{} (valid types: {})", jsonQuoted(type),
-                           jf::suggestion(type, kMaterialTypes), jf::joinKeys(kMaterialTypes)));
-  }
+                           jf::suggestion(type, types), jf::joinKeys(types)));
+  SurfaceMaterial m;
+  m.type = unit->type;
+  unit->parse(c, v, p, SpdFieldReader(c, range), m);
   return m;
 }
 
@@ -295,9 +194,10 @@ SceneObject parseObject(const jf::Source& outer, const Json& v, const std::strin
       const fs::path resolved = path.is_absolute() ? path : (c.dir / path).lexically_normal();
       const std::string notClosed = loadObjMesh(c, fp, resolved, rel, transform, trianglesLeft, shape);
       trianglesLeft -= shape.triangles.size();
-      if (obj.material.type == MaterialType::Dielectric && !notClosed.empty())
-        c.fail(mp, fmt::format("a dielectric needs a closed shape: a sphere or a closed mesh; {} is not closed: {}",
-                               jsonQuoted(rel), notClosed));
+      const MaterialTypeUnit& material = materialTypeUnit(obj.material.type);
+      if (material.needsClosedShape && !notClosed.empty())
+        c.fail(mp, fmt::format("a {} needs a closed shape: a sphere or a closed mesh; {} is not closed: {}",
+                               material.name, jsonQuoted(rel), notClosed));
       break;
     }
   }

@@ -23,7 +23,5 @@ inline constexpr int kMaxObjects = 100000;
 inline constexpr uint64_t kMaxSceneTriangles = 20'000'000;
 // Surfaces a beam may scatter from: beyond this a beam's weight is long gone.
 inline constexpr int kMaxBounces = 1024;
-// A constant refractive index ("ior"): above any transparent material's.
-inline constexpr double kMaxIor = 5.0;
 
 }  // namespace spectrace

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "lights/light_type.h"
+#include "materials/material_type.h"
 #include "scene/obj_mesh.h"
 #include "scene/scene_limits.h"
 
@@ -253,87 +254,30 @@ void validateShape(const Shape& shape, const ObjectChecker& check) {
   }
 }
 
-// The file's own key for a dielectric's index ("glass", "sellmeier", "ior"),
-// so messages name what was written.
-std::string indexKey(const ObjectChecker& check) {
-  for (const char* key : {"material/glass", "material/sellmeier", "material/ior"})
-    if (check.c.given(check.at + "/" + key)) return key;
-  return "material";
-}
+// A material unit's view of the checker: keys relative to the object's
+// material.
+class MaterialChecker final : public MaterialFieldCheck {
+ public:
+  explicit MaterialChecker(const ObjectChecker& object) : object_(object) {}
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const override { object_.fail(at(key), what); }
+  std::string got(const std::string& key, double fallback) const override { return object_.got(at(key), fallback); }
+  bool given(const std::string& key) const override { return object_.c.given(object_.at + "/" + at(key)) != nullptr; }
 
-void validateMaterial(const SurfaceMaterial& m, const Shape& shape, const SpectrumRange& range,
-                      const ObjectChecker& check) {
-  switch (m.type) {
-    case MaterialType::Absorber: return;
-    case MaterialType::Diffuse:
-    case MaterialType::Mirror: {
-      const std::string key = "material/reflectance";
-      const auto& nm = m.reflectanceNm;
-      const auto& r = m.reflectance;
-      if (nm.empty() || nm.size() != r.size())
-        check.fail(key, fmt::format("needs as many wavelengths as values, at least one (got {} and {})", nm.size(),
-                                    r.size()));
-      for (size_t i = 0; i < nm.size(); ++i)
-        if (!(std::isfinite(nm[i]) && nm[i] > 0.0) || (i > 0 && !(nm[i] > nm[i - 1])))
-          check.fail(key, fmt::format("wavelengths must be finite, > 0 and strictly increasing (node {} is at {} nm)",
-                                      i, jf::fmtNum(nm[i])));
-      // The node furthest outside [0, 1] (NaN first).
-      size_t worst = 0;
-      double worstBy = 0.0;
-      for (size_t i = 0; i < r.size(); ++i) {
-        const double by = std::isnan(r[i]) ? INFINITY : std::max(-r[i], r[i] - 1.0);
-        if (by > worstBy) worst = i, worstBy = by;
-      }
-      if (worstBy > 0.0) {
-        if (r.size() == 1)
-          check.fail(key, fmt::format("must be a reflectance in [0, 1] (got {})", check.got(key, r[0])));
-        check.fail(key, fmt::format("must lie in [0, 1] at every wavelength, but {} is {} at {} nm",
-                                    m.reflectanceLabel.empty() ? "the reflectance" : m.reflectanceLabel,
-                                    jf::fmtNum(r[worst]), jf::fmtNum(nm[worst])));
-      }
-      return;
-    }
-    case MaterialType::Dielectric: break;
-    default: check.fail("material/type", "is not a material type");
-  }
-  for (auto [name, coefficients] : {std::pair{"b", &m.sellmeierB}, std::pair{"c_um2", &m.sellmeierC}})
-    for (size_t i = 0; i < 3; ++i) {
-      const std::string key = fmt::format("material/sellmeier/{}/{}", name, i);
-      const double x = (*coefficients)[i];
-      if (!(std::isfinite(x) && x >= 0.0))
-        check.fail(key, fmt::format("must be a finite number >= 0 (got {})", check.got(key, x)));
-    }
-  // With B, C >= 0 every term B l^2 / (l^2 - C) falls as l grows between
-  // poles (its derivative in l^2 is -B C / (l^2 - C)^2), so without a pole
-  // inside the range n is finite there and least at max_nm: checking that
-  // end checks the whole range.
-  const std::string key = indexKey(check);
-  const std::string label = m.glassLabel.empty() ? std::string("the dielectric") : m.glassLabel;
-  for (size_t i = 0; i < 3; ++i) {
-    const double poleNm = 1000.0 * std::sqrt(m.sellmeierC[i]);
-    if (m.sellmeierB[i] != 0.0 && poleNm >= range.minNm && poleNm <= range.maxNm)
-      check.fail(key, fmt::format("the refractive index of {} has a pole at {} nm (C{} = {} um^2), inside the "
-                                  "scene's spectrum range {}-{} nm",
-                                  label, jf::fmtNum(poleNm), i + 1, jf::fmtNum(m.sellmeierC[i]),
-                                  jf::fmtNum(range.minNm), jf::fmtNum(range.maxNm)));
-  }
-  for (double nm : {range.maxNm, range.minNm}) {
-    const double n = m.refractiveIndexAt(nm);
-    if (!(std::isfinite(n) && n >= 1.0))
-      check.fail(key, fmt::format("the refractive index of {} must be finite and >= 1 over the scene's spectrum "
-                                  "range {}-{} nm, but at {} nm it is {}",
-                                  label, jf::fmtNum(range.minNm), jf::fmtNum(range.maxNm), jf::fmtNum(nm),
-                                  std::isnan(n) ? std::string("not a real number (n^2 <= 0)") : jf::fmtNum(n)));
-  }
+ private:
+  static std::string at(const std::string& key) { return key.empty() ? "material" : "material/" + key; }
+  const ObjectChecker& object_;
+};
+
+// A material that refracts into its shape needs the shape to have an inside.
+void checkClosedFor(const MaterialTypeUnit& material, const Shape& shape, const ObjectChecker& check) {
   if (shape.type == ShapeType::Rect || shape.type == ShapeType::Disk)
-    check.fail("material", fmt::format("a dielectric needs a closed shape: a sphere or a closed mesh (a {} has no "
-                                       "inside)",
-                                       shapeTypeName(shape.type)));
+    check.fail("material", fmt::format("a {} needs a closed shape: a sphere or a closed mesh (a {} has no inside)",
+                                       material.name, shapeTypeName(shape.type)));
   if (shape.type == ShapeType::Mesh)
     if (auto fault = findEdgeFault(shape.triangles))
-      check.fail("material", fmt::format("a dielectric needs a closed shape: a sphere or a closed mesh; this mesh is "
+      check.fail("material", fmt::format("a {} needs a closed shape: a sphere or a closed mesh; this mesh is "
                                          "not closed: {}",
-                                         describeEdgeFault(*fault, 0, [](size_t k) {
+                                         material.name, describeEdgeFault(*fault, 0, [](size_t k) {
                                            return fmt::format("triangle {}", k);
                                          })));
   // Consistent winding can still be inside out: glass then refracts every
@@ -343,8 +287,9 @@ void validateMaterial(const SurfaceMaterial& m, const Shape& shape, const Spectr
     for (const auto& t : shape.triangles)
       volume6 += glm::dot(shape.vertices[t[0]], glm::cross(shape.vertices[t[1]], shape.vertices[t[2]]));
     if (!(volume6 > 0.0))
-      check.fail("material", fmt::format("a dielectric mesh must face outwards (counter-clockwise seen from outside), "
+      check.fail("material", fmt::format("a {} mesh must face outwards (counter-clockwise seen from outside), "
                                          "but {}'s faces enclose a signed volume of {:g} m^3; turn every face round",
+                                         material.name,
                                          shape.meshFile.empty() ? std::string("this mesh")
                                                                 : jf::jsonQuoted(shape.meshFile.string()),
                                          volume6 / 6.0));
@@ -356,7 +301,10 @@ void validateObject(const SceneObject& object, size_t index, const Scene& scene,
                             object.name.empty() ? "" : fmt::format(" (object {})", jf::jsonQuoted(object.name))};
   if (uint32_t(object.shape.type) > uint32_t(ShapeType::Mesh)) check.fail("type", "is not a shape type");
   validateShape(object.shape, check);
-  validateMaterial(object.material, object.shape, scene.spectrum, check);
+  if (uint32_t(object.material.type) >= materialTypeUnits().size()) check.fail("material/type", "is not a material type");
+  const MaterialTypeUnit& material = materialTypeUnit(object.material.type);
+  material.validate(object.material, scene.spectrum.minNm, scene.spectrum.maxNm, MaterialChecker(check));
+  if (material.needsClosedShape) checkClosedFor(material, object.shape, check);
 }
 
 }  // namespace

@@ -1,0 +1,37 @@
+// The camera connection a material's unit may make at its vertex
+// (materials/diffuse.h), before the beam goes on: transport.h's loop counts
+// the beams that reach the camera themselves.
+#ifndef SPECTRACE_CAMERA_CONNECTION_H
+#define SPECTRACE_CAMERA_CONNECTION_H
+
+// Light tracing's camera connection (pbrt-v4's lightpath, Mitsuba 3's
+// ptracer): from a diffuse vertex at `point`, lit from the side `facing`,
+// to a uniform point of the camera model's entrance (camera.h: a pinhole's
+// disk, a bare sensor's own area). The beam's flux times the BRDF
+// (rho / pi), the geometry term and the entrance's area is what reaches
+// that point, and it goes on straight to the sensor. Counted when nothing
+// stands in between.
+FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float weight, float lambda, uint bin,
+                        INOUT(BeamTally) tally) {
+  if (!(weight > 0.0f) || !(point.z > constants.cameraFrontZ)) return;
+  uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce + 1u);
+  float area;
+  vec3 target = cameraConnectionPoint(uniformFromWord(words.x), uniformFromWord(words.y), area);
+  PRECISE vec3 toTarget = target - point;
+  PRECISE float distanceSq = dot3(toTarget, toTarget);
+  PRECISE float distance = sqrt(distanceSq);
+  PRECISE vec3 direction = toTarget * (1.0f / distance);
+  float cosSurface = dot3(direction, facing);
+  float cosCamera = -direction.z;
+  if (!(cosSurface > 0.0f) || !(cosCamera > 0.0f)) return;
+  uvec2 cell;
+  if (!hitSensor(point, direction, cell)) return;
+  ObjectHit blocker;
+  vec3 start = offsetOffSurface(point, facing);
+  PRECISE float reach = distance * 0.99999f;
+  if (intersectObjects(start, direction, reach, true, blocker)) return;
+  PRECISE float ratio = weight * (1.0f / 3.14159265358979f) * cosSurface * cosCamera * area / distanceSq;
+  contribute(tally, cell, bin, lambda, ratio, uniformFromWord(words.z));
+}
+
+#endif  // SPECTRACE_CAMERA_CONNECTION_H

@@ -1,0 +1,55 @@
+// Dielectric material (kernel unit; host unit:
+// host/materials/dielectric_material.cpp): reflects with the Fresnel
+// probability at the beam's wavelength's Sellmeier index and refracts
+// otherwise (Snell), into or out of its closed shape.
+#ifndef SPECTRACE_MATERIALS_DIELECTRIC_H
+#define SPECTRACE_MATERIALS_DIELECTRIC_H
+
+// The Sellmeier index at a wavelength (nm); the host keeps poles out of the
+// spectrum range.
+FN float refractiveIndexAt(Material m, float lambda) {
+  // A constant index (every C zero) exactly, without the float rounding of
+  // B l^2 / l^2: no dispersion, as colour from the bins assumes.
+  if (m.sellmeierC.x == 0.0f && m.sellmeierC.y == 0.0f && m.sellmeierC.z == 0.0f) {
+    PRECISE float constant = 1.0f + m.sellmeierB.x + m.sellmeierB.y + m.sellmeierB.z;
+    return sqrt(constant);
+  }
+  PRECISE float l = lambda * 0.001f;
+  PRECISE float l2 = l * l;
+  PRECISE float n2 = 1.0f + m.sellmeierB.x * l2 / (l2 - m.sellmeierC.x) + m.sellmeierB.y * l2 / (l2 - m.sellmeierC.y) +
+                     m.sellmeierB.z * l2 / (l2 - m.sellmeierC.z);
+  return sqrt(n2);
+}
+
+// Unpolarised Fresnel reflectance for eta = n_incident / n_transmitted.
+FN float fresnelDielectric(float cosIncident, float cosTransmitted, float eta) {
+  PRECISE float rs = (eta * cosIncident - cosTransmitted) / (eta * cosIncident + cosTransmitted);
+  PRECISE float rp = (cosIncident - eta * cosTransmitted) / (cosIncident + eta * cosTransmitted);
+  PRECISE float f = 0.5f * (rs * rs + rp * rp);
+  return f;
+}
+
+FN bool scatterDielectric(Material material, SurfaceHit hit, uvec4 words, float lambda, INOUT(vec3) origin,
+                          INOUT(vec3) direction, INOUT(bool) afterDiffuse) {
+  float choice = uniformFromWord(words.x);
+  float index = refractiveIndexAt(material, lambda);
+  PRECISE float eta = hit.fromOutside ? 1.0f / index : index;
+  PRECISE float cosIncident = -dot3(direction, hit.facing);
+  PRECISE float sinSqTransmitted = eta * eta * max(1.0f - cosIncident * cosIncident, 0.0f);
+  bool total = sinSqTransmitted >= 1.0f;  // total internal reflection
+  PRECISE float cosTransmitted = total ? 0.0f : sqrt(1.0f - sinSqTransmitted);
+  float fresnel = total ? 1.0f : fresnelDielectric(cosIncident, cosTransmitted, eta);
+  if (choice < fresnel) {
+    direction = reflected(direction, hit.facing);
+    origin = offsetOffSurface(hit.point, hit.facing);
+  } else {
+    PRECISE vec3 refracted = direction * eta + hit.facing * (eta * cosIncident - cosTransmitted);
+    PRECISE vec3 unit = refracted * (1.0f / sqrt(dot3(refracted, refracted)));
+    direction = unit;
+    origin = offsetOffSurface(hit.point, -hit.facing);
+  }
+  afterDiffuse = false;
+  return true;
+}
+
+#endif  // SPECTRACE_MATERIALS_DIELECTRIC_H

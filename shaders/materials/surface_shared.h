@@ -1,0 +1,26 @@
+// What more than one material's kernel unit uses: the reflectance table
+// (diffuse, mirror; host/materials/material_shared.cpp packs it) and the
+// specular reflection (mirror, dielectric).
+#ifndef SPECTRACE_MATERIALS_SURFACE_SHARED_H
+#define SPECTRACE_MATERIALS_SURFACE_SHARED_H
+
+// A material's reflectance at a wavelength: linear between its table's
+// nodes, holding the end values outside.
+FN float reflectanceAt(Material m, float lambda) {
+  PRECISE float x = (lambda - m.reflectanceLambda0) * m.reflectanceNodesPerNm;
+  float last = float(m.reflectanceCount - 1u);
+  float clamped = min(max(x, 0.0f), last);
+  uint node = min(uint(clamped), m.reflectanceCount > 1u ? m.reflectanceCount - 2u : 0u);
+  float a = readSceneFloat(m.reflectanceFirst + node);
+  float b = m.reflectanceCount > 1u ? readSceneFloat(m.reflectanceFirst + node + 1u) : a;
+  PRECISE float t = clamped - float(node);
+  PRECISE float value = a + (b - a) * t;
+  return value;
+}
+
+FN vec3 reflected(vec3 direction, vec3 n) {
+  PRECISE vec3 r = direction - n * (2.0f * dot3(direction, n));
+  return r;
+}
+
+#endif  // SPECTRACE_MATERIALS_SURFACE_SHARED_H
