@@ -83,7 +83,8 @@ else
   tree_desc="working tree (HEAD ${head_sha:0:12} + changes)"
 fi
 
-work=$root/build-base
+# Resolved: a symlinked build-base/ must name the worktree as git knows it.
+work=$(realpath -m "$root/build-base")
 src=$work/src
 mkdir -p "$work/logs"
 if command -v flock > /dev/null; then

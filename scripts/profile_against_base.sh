@@ -28,7 +28,8 @@ base_rev=${1:-474d8c5}
 jobs=$(nproc 2>/dev/null || echo 2)
 root=$(pwd -P)
 base_sha=$(git rev-parse --verify -q "$base_rev^{commit}") || die "unknown revision '$base_rev'"
-work=$root/build-base-profile
+# Resolved: a symlinked build-base-profile/ must name the worktree as git knows it.
+work=$(realpath -m "$root/build-base-profile")
 mkdir -p "$work/logs" "$work/runs"
 # run_logged and build_base_spectrace.
 # shellcheck source=lib/base_build.sh

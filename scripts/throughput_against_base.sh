@@ -31,7 +31,8 @@ base_rev=${1:-2cc8a60}
 jobs=$(nproc 2>/dev/null || echo 2)
 root=$(pwd -P)
 base_sha=$(git rev-parse --verify -q "$base_rev^{commit}") || die "unknown revision '$base_rev'"
-work=$root/build-base
+# Resolved: a symlinked build-base/ must name the worktree as git knows it.
+work=$(realpath -m "$root/build-base")
 mkdir -p "$work/logs" "$work/throughput"
 # run_logged and build_base_spectrace.
 # shellcheck source=lib/base_build.sh
