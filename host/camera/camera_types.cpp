@@ -3,11 +3,12 @@
 
 namespace spectrace {
 
-// Each defined in its own unit, camera/<kind>_camera.cpp.
-const CameraTypeUnit& pinholeCameraUnit();
+// Each defined in its own unit, camera/<model>_camera.cpp, listed in
+// host/camera/CMakeLists.txt (spectrace_unit_table).
+#include "camera_units.inc"
 
 const std::vector<const CameraTypeUnit*>& cameraTypeUnits() {
-  static const std::vector<const CameraTypeUnit*> units = {&pinholeCameraUnit()};
+  static const std::vector<const CameraTypeUnit*> units = {SPECTRACE_CAMERA_UNITS};
   return units;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The kinds of camera model (camera.h): one unit each,
-// camera/<kind>_camera.cpp; cameraTypeUnits() in camera_types.cpp is the
-// only table of them.
+// camera/<kind>_camera.cpp, listed once in host/camera/CMakeLists.txt
+// (spectrace_unit_table), from which cameraTypeUnits() is built.
 #include <memory>
 #include <string>
 #include <vector>

@@ -2,7 +2,8 @@
 // One unit per light type: everything the host knows about a type (its JSON
 // keys, checks, device record, reachability, aiming) lives in its own file,
 // lights/<type>_light.cpp, beside the kernel of the same stem in
-// shaders/lights/. lightTypeUnit() in light_types.cpp is the only table.
+// shaders/lights/. They are listed once, in host/lights/CMakeLists.txt
+// (spectrace_unit_table), from which light_types.cpp builds the table.
 #include <string>
 #include <string_view>
 #include <vector>

@@ -6,17 +6,13 @@
 
 namespace spectrace {
 
-// Each defined in its own unit, lights/<type>_light.cpp.
-const LightTypeUnit& pointLightUnit();
-const LightTypeUnit& spotLightUnit();
-const LightTypeUnit& diskLightUnit();
-const LightTypeUnit& rectLightUnit();
-const LightTypeUnit& laserLightUnit();
+// Each defined in its own unit, lights/<type>_light.cpp, listed in
+// host/lights/CMakeLists.txt (spectrace_unit_table).
+#include "light_units.inc"
 
 const std::vector<const LightTypeUnit*>& lightTypeUnits() {
   static const std::vector<const LightTypeUnit*> units = [] {
-    std::vector<const LightTypeUnit*> all = {&pointLightUnit(), &spotLightUnit(), &diskLightUnit(), &rectLightUnit(),
-                                             &laserLightUnit()};
+    std::vector<const LightTypeUnit*> all = {SPECTRACE_LIGHT_UNITS};
     for (size_t i = 0; i < all.size(); ++i)
       if (uint32_t(all[i]->type) != i) throw std::logic_error("light type units out of LightType order");
     return all;

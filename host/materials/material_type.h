@@ -2,8 +2,9 @@
 // One unit per material kind: everything the host knows about a kind (its
 // JSON keys, checks, device record, what it does to the shortcuts) lives in
 // its own file, materials/<kind>_material.cpp, beside the kernel of the
-// same stem in shaders/materials/. materialTypeUnits() in
-// material_types.cpp is the only table.
+// same stem in shaders/materials/. They are listed once, in
+// host/materials/CMakeLists.txt (spectrace_unit_table), from which
+// material_types.cpp builds the table.
 #include <filesystem>
 #include <string>
 #include <string_view>

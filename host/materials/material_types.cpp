@@ -6,16 +6,13 @@
 
 namespace spectrace {
 
-// Each defined in its own unit, materials/<kind>_material.cpp.
-const MaterialTypeUnit& absorberMaterialUnit();
-const MaterialTypeUnit& diffuseMaterialUnit();
-const MaterialTypeUnit& mirrorMaterialUnit();
-const MaterialTypeUnit& dielectricMaterialUnit();
+// Each defined in its own unit, materials/<kind>_material.cpp, listed in
+// host/materials/CMakeLists.txt (spectrace_unit_table).
+#include "material_units.inc"
 
 const std::vector<const MaterialTypeUnit*>& materialTypeUnits() {
   static const std::vector<const MaterialTypeUnit*> units = [] {
-    std::vector<const MaterialTypeUnit*> all = {&absorberMaterialUnit(), &diffuseMaterialUnit(), &mirrorMaterialUnit(),
-                                                &dielectricMaterialUnit()};
+    std::vector<const MaterialTypeUnit*> all = {SPECTRACE_MATERIAL_UNITS};
     for (size_t i = 0; i < all.size(); ++i)
       if (uint32_t(all[i]->type) != i) throw std::logic_error("material type units out of MaterialType order");
     return all;
