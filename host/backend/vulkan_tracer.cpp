@@ -1,7 +1,9 @@
 #include "backend/vulkan_tracer.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
+
 #include <fmt/format.h>
 
 #include "embedded_shaders.h"
@@ -30,6 +32,40 @@ Buffer uploadedBuffer(TracerBufferPool& pool, const vk_util::Context& context, c
                             usage);
   buffer.upload(data.data(), sizeof(T) * data.size());
   return buffer;
+}
+
+template <typename T>
+SceneTableBuffer tableBuffer(TracerBufferPool& pool, const vk_util::Context& context, device::TraceBinding binding,
+                             const std::string& role, const std::vector<T>& data,
+                             std::optional<device::TraceBinding> uniformBinding = std::nullopt,
+                             vk::DeviceSize uniformBytes = 0) {
+  return {binding, role, uploadedBuffer(pool, context, role, data, uniformBinding ? kTableUsage : vk::BufferUsageFlags{}),
+          uniformBinding, uniformBytes};
+}
+
+// The scene's tables, the one list: what each holds and where it is bound.
+// Scene objects' tables are 16-byte stand-ins when there are none. A new
+// kind of data for the kernel belongs in the scene data (no new binding).
+std::vector<SceneTableBuffer> sceneTableBuffers(TracerBufferPool& pool, const vk_util::Context& context,
+                                                const CompiledScene& plan, const UniformTableLayout& uniform) {
+  using namespace device;
+  const DeviceScene& s = plan.device;
+  std::vector<SceneTableBuffer> tables;
+  tables.push_back(tableBuffer(pool, context, kBindingLights, "lights", paddedTable(s.lights, uniform.lights),
+                               kBindingLightsUniform, uniform.lightBytes()));
+  tables.push_back(tableBuffer(pool, context, kBindingSpectralIntervals, "intervals",
+                               paddedTable(s.intervals, uniform.intervals), kBindingSpectralIntervalsUniform,
+                               uniform.intervalBytes()));
+  tables.push_back(tableBuffer(pool, context, kBindingAliasColumns, "alias columns",
+                               paddedTable(s.aliasColumns, uniform.aliasColumns), kBindingAliasColumnsUniform,
+                               uniform.aliasColumnBytes()));
+  tables.push_back(tableBuffer(pool, context, kBindingCmfTable, "cmf table", paddedTable(s.cmfTable, uniform.cmfNodes),
+                               kBindingCmfTableUniform, uniform.cmfBytes()));
+  tables.push_back(tableBuffer(pool, context, kBindingPrimitives, "primitives", s.primitives));
+  tables.push_back(tableBuffer(pool, context, kBindingBvhNodes, "bvh nodes", s.bvhNodes));
+  tables.push_back(tableBuffer(pool, context, kBindingMaterials, "materials", s.materials));
+  tables.push_back(tableBuffer(pool, context, kBindingSceneData, "scene data", s.data.words()));
+  return tables;
 }
 
 std::shared_ptr<TracerBufferPool> poolOrOwn(std::shared_ptr<TracerBufferPool> pool) {
@@ -228,18 +264,8 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
                                         context.info().maxStorageBufferRange, context.info().maxMemoryAllocationSize))),
       traceConstants_(buffers_->take(context, "trace constants", sizeof(device::TraceConstants), MemoryPlacement::DeviceLocal,
                                      vk::BufferUsageFlagBits::eUniformBuffer)),
-      lights_(uploadedBuffer(*buffers_, context, "lights", paddedTable(plan.device.lights, uniformTables_.lights), kTableUsage)),
-      intervals_(uploadedBuffer(*buffers_, context, "intervals", paddedTable(plan.device.intervals, uniformTables_.intervals),
-                                kTableUsage)),
-      aliasColumns_(uploadedBuffer(*buffers_, context, "alias columns",
-                                   paddedTable(plan.device.aliasColumns, uniformTables_.aliasColumns), kTableUsage)),
+      sceneTables_(sceneTableBuffers(*buffers_, context, plan, uniformTables_)),
       unusedBeamRecords_(buffers_->take(context, "unused beam records", 16, MemoryPlacement::DeviceLocal)),
-      cmfTable_(uploadedBuffer(*buffers_, context, "cmf table", paddedTable(plan.device.cmfTable, uniformTables_.cmfNodes),
-                               kTableUsage)),
-      primitives_(uploadedBuffer(*buffers_, context, "primitives", plan.device.primitives)),
-      bvhNodes_(uploadedBuffer(*buffers_, context, "bvh nodes", plan.device.bvhNodes)),
-      materials_(uploadedBuffer(*buffers_, context, "materials", plan.device.materials)),
-      sceneData_(uploadedBuffer(*buffers_, context, "scene data", plan.device.data.words())),
       stats_(buffers_->take(context, "trace stats", sizeof(device::TraceStats), MemoryPlacement::HostVisible)),
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
@@ -261,15 +287,8 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
 
 VulkanTracer::~VulkanTracer() {
   buffers_->giveBack("trace constants", std::move(traceConstants_));
-  buffers_->giveBack("lights", std::move(lights_));
-  buffers_->giveBack("intervals", std::move(intervals_));
-  buffers_->giveBack("alias columns", std::move(aliasColumns_));
+  for (SceneTableBuffer& table : sceneTables_) buffers_->giveBack(table.role, std::move(table.buffer));
   buffers_->giveBack("unused beam records", std::move(unusedBeamRecords_));
-  buffers_->giveBack("cmf table", std::move(cmfTable_));
-  buffers_->giveBack("primitives", std::move(primitives_));
-  buffers_->giveBack("bvh nodes", std::move(bvhNodes_));
-  buffers_->giveBack("materials", std::move(materials_));
-  buffers_->giveBack("scene data", std::move(sceneData_));
   buffers_->giveBack("trace stats", std::move(stats_));
   for (size_t c = 0; c < histogramChunks_.size(); ++c)
     buffers_->giveBack(fmt::format("histogram {}", c), std::move(histogramChunks_[c]));
@@ -277,21 +296,13 @@ VulkanTracer::~VulkanTracer() {
 
 void VulkanTracer::bindTraceBuffers(vk_util::ComputePipeline& pipeline, const Buffer& beamRecords) const {
   pipeline.bindBuffer(device::kBindingTraceConstants, 0, traceConstants_);
-  pipeline.bindBuffer(device::kBindingLights, 0, lights_);
-  pipeline.bindBuffer(device::kBindingSpectralIntervals, 0, intervals_);
-  pipeline.bindBuffer(device::kBindingAliasColumns, 0, aliasColumns_);
   pipeline.bindBuffer(device::kBindingBeamRecords, 0, beamRecords);
-  pipeline.bindBuffer(device::kBindingCmfTable, 0, cmfTable_);
-  // The uniform copies: the padded tables (the same buffers), or their first
-  // element when the storage buffers are read.
-  pipeline.bindBuffer(device::kBindingLightsUniform, 0, lights_, 0, uniformTables_.lightBytes());
-  pipeline.bindBuffer(device::kBindingSpectralIntervalsUniform, 0, intervals_, 0, uniformTables_.intervalBytes());
-  pipeline.bindBuffer(device::kBindingCmfTableUniform, 0, cmfTable_, 0, uniformTables_.cmfBytes());
-  pipeline.bindBuffer(device::kBindingAliasColumnsUniform, 0, aliasColumns_, 0, uniformTables_.aliasColumnBytes());
-  pipeline.bindBuffer(device::kBindingPrimitives, 0, primitives_);
-  pipeline.bindBuffer(device::kBindingBvhNodes, 0, bvhNodes_);
-  pipeline.bindBuffer(device::kBindingMaterials, 0, materials_);
-  pipeline.bindBuffer(device::kBindingSceneData, 0, sceneData_);
+  for (const SceneTableBuffer& table : sceneTables_) {
+    pipeline.bindBuffer(table.binding, 0, table.buffer);
+    // The uniform copy: the padded table (the same buffer), or its first
+    // element when the storage buffer is read.
+    if (table.uniformBinding) pipeline.bindBuffer(*table.uniformBinding, 0, table.buffer, 0, table.uniformBytes);
+  }
   pipeline.bindBuffer(device::kBindingTraceStats, 0, stats_);
   // Unused chunk slots alias chunk 0: the descriptors must be valid even
   // though no pixel maps to them.

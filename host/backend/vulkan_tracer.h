@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -72,6 +73,17 @@ class TracerBufferPool {
   uint64_t allocations_ = 0;
 };
 
+// One of the scene's tables on the device: its buffer, bound at `binding`
+// and, for a table the trace may read as a uniform buffer
+// (uniform_tables.h), at `uniformBinding` over its first uniformBytes.
+struct SceneTableBuffer {
+  device::TraceBinding binding;
+  std::string role;  // its name in the buffer pool
+  vk_util::Buffer buffer;
+  std::optional<device::TraceBinding> uniformBinding;
+  vk::DeviceSize uniformBytes = 0;
+};
+
 class VulkanTracer final : public Tracer {
  public:
   // `specialisedFeatures` (SpecialisedFeature bits): the scene features the
@@ -112,16 +124,8 @@ class VulkanTracer final : public Tracer {
   std::vector<vk_util::SpecConstant> traceSpecialisation_;  // the scene's trace specialisation constants
   HistogramSplit split_;
   vk_util::Buffer traceConstants_;
-  vk_util::Buffer lights_;
-  vk_util::Buffer intervals_;
-  vk_util::Buffer aliasColumns_;
+  std::vector<SceneTableBuffer> sceneTables_;  // from sceneTableBuffers (vulkan_tracer.cpp), the one list
   vk_util::Buffer unusedBeamRecords_;  // bound where the record path is compiled out
-  vk_util::Buffer cmfTable_;
-  // Scene objects (transport.h); 16-byte stand-ins when there are none.
-  vk_util::Buffer primitives_;
-  vk_util::Buffer bvhNodes_;
-  vk_util::Buffer materials_;
-  vk_util::Buffer sceneData_;
   vk_util::Buffer stats_;  // TraceStats
   std::vector<uint64_t> histogramChunkBytes_;  // the used part of each chunk (a reused one may be larger)
   std::vector<vk_util::Buffer> histogramChunks_;
