@@ -46,9 +46,10 @@ TEST_P(Overlap, WriteFailureIsReportedForItsJobAndTheOthersFinishIdentical) {
   const fs::path dir = freshDir(std::string("failure_") + (GetParam() == DeviceChoice::Gpu ? "gpu" : "cpu"));
   std::vector<RenderJob> jobs = {pointJob(dir / "a.exr", 2700, 32), pointJob(dir / "b.exr", 4000, 40),
                                  pointJob(dir / "c.exr", 6500, 24)};
-  // b's PNG preview cannot be written: a folder holds its name. The EXR
-  // path itself is fine, so the failure comes only when b is written.
-  fs::create_directories(dir / "b.png");
+  // b's PNG preview cannot be written: a folder takes its name while b is
+  // traced, after its outputs were checked, so the failure comes only when
+  // b is written.
+  jobs[1].loop.onProgress = [&dir](uint64_t, uint64_t) { fs::create_directories(dir / "b.png"); };
   const Session session(GetParam());
   std::vector<std::shared_future<RenderResult>> written;
   for (const RenderJob& job : jobs) written.push_back(session.renderOverlapped(job));

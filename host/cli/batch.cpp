@@ -120,6 +120,7 @@ int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
                        100.0 * double(done) / double(all));
         };
       try {
+        checkOutputPath(job, {command.jobs});  // the job file is an input too
         auto result = session.renderOverlapped(job);
         collect();  // the previous job: written by now
         writing = Written{i, std::move(result), job.beamCount()};

@@ -80,7 +80,8 @@ int runMerge(const MergeCommand& command) {
     // states and the scene they name are inputs, never overwritten.
     std::vector<std::filesystem::path> inputs(command.states.begin(), command.states.end());
     inputs.emplace_back(merged.fingerprint.sceneFile);
-    checkOutputPath(command.output, inputs);
+    checkOutputFiles(outputFilesOf(command.output, command.png, command.state.value_or(std::filesystem::path())),
+                     inputs);
     std::function<void(const std::string&)> log;
     if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     const Session session(parseDeviceChoice(command.device), log);

@@ -127,45 +127,65 @@ void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerp
 }  // namespace
 
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs) {
-  std::vector<std::filesystem::path> all = inputs;
+  std::vector<std::filesystem::path> all;
+  for (const auto& input : inputs) {
+    std::error_code ec;
+    const bool ownState = job.resume && !job.state.empty() && std::filesystem::equivalent(input, job.state, ec) && !ec;
+    if (!ownState) all.push_back(input);  // resuming replaces its own state
+  }
   all.push_back(job.scene.sourcePath);
   for (const Light& light : job.scene.lights) all.push_back(light.spdFile);  // the scene's CSV spectra
   for (const SceneObject& object : job.scene.objects) {  // its OBJ meshes and reflectance CSVs
     all.push_back(object.shape.meshFile);
     all.push_back(object.material.reflectanceFile);
   }
-  checkOutputPath(job.output, all);
+  checkOutputFiles(outputFilesOf(job.output, job.png, job.state), all);
 }
 
-void checkOutputPath(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs) {
+std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png, const std::filesystem::path& state) {
+  std::vector<OutputFile> files{{exr, "output", ".exr"}};
+  if (png) files.push_back({std::filesystem::path(exr).replace_extension(".png"), "PNG preview", ".png"});
+  if (!state.empty()) files.push_back({state, "--state", ""});
+  return files;
+}
+
+namespace {
+
+std::string lowerCaseExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+// The one file's checks of checkOutputFiles, all but the clash with the
+// other outputs.
+void checkOutputFile(const OutputFile& output, const std::vector<std::filesystem::path>& inputs) {
   namespace fs = std::filesystem;
-  const std::string name = output.string();
+  const std::string name = output.role + " " + output.path.string();
   std::error_code ec;
-  const fs::file_status st = fs::status(output, ec);
-  const bool exists = !ec && fs::exists(st);
-  if (exists) {
+  const fs::file_status st = fs::status(output.path, ec);
+  if (!ec && fs::exists(st)) {
     for (const auto& input : inputs) {
       if (input.empty()) continue;
       std::error_code eq;
-      if (fs::equivalent(output, input, eq) && !eq)
-        throw OutputPathError(fmt::format("output {} is the input file {}; an input is never overwritten", name,
+      if (fs::equivalent(output.path, input, eq) && !eq)
+        throw OutputPathError(fmt::format("{} is the input file {}; an input is never overwritten", name,
                                           input.string()));
     }
     if (!fs::is_regular_file(st))
-      throw OutputPathError(fmt::format("output {} exists and is not a regular file ({}); refusing to replace it", name,
+      throw OutputPathError(fmt::format("{} exists and is not a regular file ({}); refusing to replace it", name,
                                         fs::is_directory(st) ? "a folder" : "a device, pipe or socket"));
   }
-  std::string ext = output.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext != ".exr")
-    throw OutputPathError(fmt::format("output {} must end in .exr (the PNG preview is written beside it as .png)", name));
-  const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  if (!output.extension.empty() && lowerCaseExtension(output.path) != output.extension)
+    throw OutputPathError(fmt::format("{} must end in {} (the PNG preview is written beside it as .png)", name,
+                                      output.extension));
+  const fs::path folder = output.path.parent_path().empty() ? fs::path(".") : output.path.parent_path();
   fs::create_directories(folder, ec);
   if (ec)
     throw OutputPathError(fmt::format("cannot create the folder {} for {}: {}", folder.string(), name, ec.message()));
   // A probe file proves the folder takes a new file (permissions, read-only
   // file systems) before any beam is traced; the real write is atomic later.
-  const fs::path probe = folder / fmt::format(".{}.probe-{}", output.filename().string(), ::getpid());
+  const fs::path probe = folder / fmt::format(".{}.probe-{}", output.path.filename().string(), ::getpid());
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int err = errno;
@@ -174,6 +194,20 @@ void checkOutputPath(const std::filesystem::path& output, const std::vector<std:
   }
   ::close(fd);
   ::unlink(probe.c_str());
+}
+
+}  // namespace
+
+void checkOutputFiles(const std::vector<OutputFile>& outputs, const std::vector<std::filesystem::path>& inputs) {
+  namespace fs = std::filesystem;
+  for (const OutputFile& output : outputs) checkOutputFile(output, inputs);
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const fs::path mine = fs::weakly_canonical(fs::absolute(outputs[i].path));
+    for (size_t j = 0; j < i; ++j)
+      if (fs::weakly_canonical(fs::absolute(outputs[j].path)) == mine)
+        throw OutputPathError(fmt::format("{} {} is also this run's {}; each output needs a file of its own",
+                                          outputs[i].role, outputs[i].path.string(), outputs[j].role));
+  }
 }
 
 namespace {

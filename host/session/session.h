@@ -63,16 +63,30 @@ struct OutputPathError : OutputError {
   using OutputError::OutputError;
 };
 
-// Checks, before any tracing, that the job's output can be written without
-// harm: it is absent or a regular file; it is not the scene file, one of the
-// scene's CSV spectra nor any of `inputs` (compared with
-// std::filesystem::equivalent); it ends in .exr (so the PNG preview beside
-// it never replaces it); and its folder can be created and holds a new file
-// (a probe file is created and removed).
-// Throws OutputPathError naming the path and the reason.
+// One file a run writes: its path, what names it in messages ("output",
+// "--state") and the extension it must have ("" for any).
+struct OutputFile {
+  std::filesystem::path path;
+  std::string role;
+  std::string extension;
+};
+
+// Checks, before any tracing, that every output can be written without
+// harm: each is absent or a regular file; none is any of `inputs` (compared
+// with std::filesystem::equivalent) nor another of `outputs`; each has its
+// extension (the EXR ends in .exr, so the PNG preview beside it never
+// replaces it); and each folder can be created and holds a new file (a probe
+// file is created and removed). Throws OutputPathError naming the path and
+// the reason.
+void checkOutputFiles(const std::vector<OutputFile>& outputs, const std::vector<std::filesystem::path>& inputs);
+// The files a job writes: its EXR, its PNG preview (when written) and its
+// state (when asked for).
+std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png,
+                                      const std::filesystem::path& state);
+// checkOutputFiles for the job's outputs; the scene file, its CSV spectra,
+// its OBJ meshes and any of `inputs` are inputs (a state the job resumes
+// from may be its own --state, which it replaces).
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs = {});
-// The same checks for any output (merge -o): `inputs` are all the files read.
-void checkOutputPath(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
 
 class Session {
  public:
