@@ -157,9 +157,11 @@ SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (sp
 // rounding, spare): keyed on (seed, beam, bounce), as every block is.
 SPECTRACE_CONSTANT uint kRngBlockBounce = 3;
 
-// Scene objects. Shapes become primitives in the camera frame (metres,
-// single precision, built on the host in double): a mesh one triangle per
-// face, the others one primitive each.
+// Scene objects. Shapes (spectrace::ShapeType, at the end of this file; one
+// host unit per kind in host/shapes/<kind>_shape.cpp) become primitives in
+// the camera frame (metres, single precision, built on the host in double):
+// a mesh one triangle per face, the others one primitive each. One kernel
+// unit per primitive in shaders/shapes/<primitive>.h.
 SPECTRACE_CONSTANT uint kPrimitiveTriangle = 0;  // a: vertex 0, b: vertex 1 - vertex 0, c: vertex 2 - vertex 0
 SPECTRACE_CONSTANT uint kPrimitiveRect = 1;      // a: centre, b, c: half edges (b x c along the normal)
 SPECTRACE_CONSTANT uint kPrimitiveDisk = 2;      // a: centre, b: unit normal, c.x: radius^2
@@ -508,6 +510,11 @@ enum class MaterialType : uint32_t {
   Mirror = device::kMaterialMirror,
   Dielectric = device::kMaterialDielectric,
 };
+// The shape kinds on the host, numbered as host/shapes/shape_types.cpp lists
+// their units. The kernel sees only the primitives each unit emits
+// (kPrimitive*): it is here so that a new kind and the primitive it needs
+// are one file's lines.
+enum class ShapeType : uint32_t { Rect, Disk, Sphere, Mesh };
 }  // namespace spectrace
 #endif
 

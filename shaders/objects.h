@@ -1,7 +1,8 @@
-// Scene objects in the shared kernel: ray against primitive, the BVH walk
-// with a fixed stack, the camera's body, and the offset that keeps a
-// scattered beam off the surface it leaves. Float only, with PRECISE, so the
-// CPU reference and the shader find the same surface at the same point.
+// Scene objects in the shared kernel: dispatch to the primitive's unit
+// (shapes/<primitive>.h), the BVH walk with a fixed stack, the camera's
+// body, and the offset that keeps a scattered beam off the surface it
+// leaves. Float only, with PRECISE, so the CPU reference and the shader
+// find the same surface at the same point.
 #ifndef SPECTRACE_OBJECTS_H
 #define SPECTRACE_OBJECTS_H
 
@@ -11,73 +12,22 @@ struct ObjectHit {
   uint primitive;  // index into the primitives
 };
 
-// Möller-Trumbore. Returns the distance, or a negative number for a miss.
-FN float intersectTriangle(vec3 origin, vec3 direction, Primitive p) {
-  PRECISE vec3 pvec = cross3(direction, p.c);
-  PRECISE float det = dot3(p.b, pvec);
-  float miss = -1.0f;
-  if (det == 0.0f) return miss;
-  PRECISE float inverse = 1.0f / det;
-  PRECISE vec3 tvec = origin - p.a;
-  PRECISE float u = dot3(tvec, pvec) * inverse;
-  if (!(u >= 0.0f && u <= 1.0f)) return miss;
-  PRECISE vec3 qvec = cross3(tvec, p.b);
-  PRECISE float v = dot3(direction, qvec) * inverse;
-  if (!(v >= 0.0f && u + v <= 1.0f)) return miss;
-  PRECISE float t = dot3(p.c, qvec) * inverse;
-  return t;
-}
+// One kernel unit per primitive (host units: host/shapes/<kind>_shape.cpp),
+// chosen by the Primitive record's type.
+#include "shapes/shape_shared.h"
+#include "shapes/triangle.h"
+#include "shapes/rect.h"
+#include "shapes/disk.h"
+#include "shapes/sphere.h"
 
-// A plane through `centre` with normal `n` (any length): the distance and
-// the point, or a negative distance when parallel or behind.
-FN float intersectPlane(vec3 origin, vec3 direction, vec3 centre, vec3 n, OUT(vec3) point) {
-  PRECISE float denominator = dot3(direction, n);
-  PRECISE float t = denominator != 0.0f ? dot3(centre - origin, n) / denominator : -1.0f;
-  PRECISE vec3 q = origin + direction * t;
-  point = q;
-  return t;
-}
-
-FN float intersectRect(vec3 origin, vec3 direction, Primitive p) {
-  vec3 point;
-  float t = intersectPlane(origin, direction, p.a, cross3(p.b, p.c), point);
-  PRECISE vec3 q = point - p.a;
-  PRECISE float s = dot3(q, p.b) / dot3(p.b, p.b);
-  PRECISE float r = dot3(q, p.c) / dot3(p.c, p.c);
-  return abs(s) <= 1.0f && abs(r) <= 1.0f ? t : -1.0f;
-}
-
-FN float intersectDisk(vec3 origin, vec3 direction, Primitive p) {
-  vec3 point;
-  float t = intersectPlane(origin, direction, p.a, p.b, point);
-  PRECISE vec3 q = point - p.a;
-  return dot3(q, q) <= p.c.x ? t : -1.0f;
-}
-
-// The nearer positive root, from the discriminant in the form of Ray
-// Tracing Gems ch. 7 (r^2 - |oc - (oc.d) d|^2), which keeps its precision
-// for rays from far away; the roots as q and c / q avoid cancellation.
-FN float intersectSphere(vec3 origin, vec3 direction, Primitive p) {
-  PRECISE vec3 oc = origin - p.a;
-  PRECISE float b = dot3(oc, direction);
-  PRECISE vec3 f = oc - direction * b;
-  PRECISE float discriminant = p.b.y - dot3(f, f);
-  if (!(discriminant >= 0.0f)) return -1.0f;
-  PRECISE float c = dot3(oc, oc) - p.b.y;
-  PRECISE float q = b > 0.0f ? -(b + sqrt(discriminant)) : -(b - sqrt(discriminant));
-  PRECISE float t0 = q;
-  PRECISE float t1 = q != 0.0f ? c / q : 0.0f;
-  float nearRoot = min(t0, t1);
-  float farRoot = max(t0, t1);
-  return nearRoot > 0.0f ? nearRoot : farRoot;
-}
-
+// The distance along the ray to the primitive, or a negative number for a
+// miss.
 FN float intersectPrimitive(vec3 origin, vec3 direction, Primitive p) {
   float t = -1.0f;
   if (p.type == kPrimitiveTriangle) t = intersectTriangle(origin, direction, p);
   else if (p.type == kPrimitiveRect) t = intersectRect(origin, direction, p);
   else if (p.type == kPrimitiveDisk) t = intersectDisk(origin, direction, p);
-  else t = intersectSphere(origin, direction, p);
+  else if (p.type == kPrimitiveSphere) t = intersectSphere(origin, direction, p);
   return t;
 }
 
@@ -85,11 +35,12 @@ FN float intersectPrimitive(vec3 origin, vec3 direction, Primitive p) {
 // meshes (counter-clockwise from outside), along the given normal for
 // rects and disks.
 FN vec3 primitiveNormal(Primitive p, vec3 point) {
-  PRECISE vec3 n = p.b;
-  if (p.type == kPrimitiveTriangle || p.type == kPrimitiveRect) n = cross3(p.b, p.c);
-  else if (p.type == kPrimitiveSphere) n = point - p.a;
-  PRECISE vec3 unit = n * (1.0f / sqrt(dot3(n, n)));
-  return unit;
+  vec3 n = vec3(0.0f, 0.0f, 0.0f);
+  if (p.type == kPrimitiveTriangle) n = triangleNormal(p);
+  else if (p.type == kPrimitiveRect) n = rectNormal(p);
+  else if (p.type == kPrimitiveDisk) n = diskNormal(p);
+  else if (p.type == kPrimitiveSphere) n = sphereNormal(p, point);
+  return n;
 }
 
 // The hit point put back onto the primitive's surface. A point found as
@@ -98,9 +49,12 @@ FN vec3 primitiveNormal(Primitive p, vec3 point) {
 // projected onto the surface, its error is a few ulps of the primitive's
 // own coordinates.
 FN vec3 pointOnSurface(Primitive p, vec3 point, vec3 n) {
-  PRECISE vec3 onPlane = point - n * dot3(point - p.a, n);
-  PRECISE vec3 onSphere = p.a + n * p.b.x;
-  return p.type == kPrimitiveSphere ? onSphere : onPlane;
+  vec3 onSurface = point;
+  if (p.type == kPrimitiveTriangle) onSurface = triangleSurfacePoint(p, point, n);
+  else if (p.type == kPrimitiveRect) onSurface = rectSurfacePoint(p, point, n);
+  else if (p.type == kPrimitiveDisk) onSurface = diskSurfacePoint(p, point, n);
+  else if (p.type == kPrimitiveSphere) onSurface = sphereSurfacePoint(p, n);
+  return onSurface;
 }
 
 // 1 / direction with zero components replaced by a huge finite value, so

@@ -10,13 +10,9 @@
 #include <glm/vec3.hpp>
 
 #include "device_shared.h"
+#include "shapes/shape_type.h"
 
 namespace spectrace {
-
-// One primitive's axis-aligned bounds, in double.
-struct PrimitiveBounds {
-  glm::dvec3 lo, hi;
-};
 
 struct BuiltBvh {
   std::vector<device::BvhNode> nodes;  // empty for no primitives

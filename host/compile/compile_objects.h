@@ -1,8 +1,9 @@
 #pragma once
 // The scene's objects for the kernel (shaders/objects.h, transport.h):
-// shapes become primitives in the camera frame, each object's material a
-// Material packed by its kind's unit (materials/material_type.h), and a BVH
-// over the primitives, all worked out in double and rounded once.
+// shapes become primitives in the camera frame, placed by their kind's unit
+// (shapes/shape_type.h), each object's material a Material packed by its
+// kind's unit (materials/material_type.h), and a BVH over the primitives,
+// all worked out in double and rounded once.
 #include "compile/compile_scene.h"
 #include "scene/scene.h"
 

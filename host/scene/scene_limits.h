@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "camera/world_limits.h"
+#include "shapes/shape.h"
 
 namespace spectrace {
 
@@ -16,11 +17,9 @@ inline constexpr double kMaxWavelengthNm = 100000.0;  // 0.1 mm; keeps spectral 
 // real scenes have a handful.
 inline constexpr int kMaxLights = 4096;
 inline constexpr double kMaxKelvin = 1e6;  // hotter than any star; keeps Planck's law finite
-// Objects and their triangles: far above hand-made scenes and scanned
-// models, and the compiled primitives and BVH (about 100 bytes a triangle)
-// stay a few GB.
+// Objects: far above hand-made scenes and scanned models (their triangles:
+// kMaxSceneTriangles, shapes/shape.h).
 inline constexpr int kMaxObjects = 100000;
-inline constexpr uint64_t kMaxSceneTriangles = 20'000'000;
 // Surfaces a beam may scatter from: beyond this a beam's weight is long gone.
 inline constexpr int kMaxBounces = 1024;
 

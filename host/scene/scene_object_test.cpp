@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json/json_fields.h"
-#include "scene/obj_mesh.h"
+#include "shapes/obj_mesh.h"
 #include "scene/scene.h"
 #include "spectrum/glass.h"
 

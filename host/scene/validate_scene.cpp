@@ -10,8 +10,8 @@
 
 #include "lights/light_type.h"
 #include "materials/material_type.h"
-#include "scene/obj_mesh.h"
 #include "scene/scene_limits.h"
+#include "shapes/shape_type.h"
 
 namespace spectrace {
 
@@ -183,76 +183,24 @@ void validateLight(const Light& light, size_t index, const Scene& scene, const S
 
 // An object's view of the checker: keys relative to the object, messages
 // with its name.
-struct ObjectChecker {
-  const SceneChecker& c;
-  std::string at, note;
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const { c.fail(at + "/" + key, what, note); }
-  std::string got(const std::string& key, double fallback) const { return c.got(at + "/" + key, fallback); }
-  std::string got(const std::string& key, const glm::dvec3& fallback) const { return c.got(at + "/" + key, fallback); }
-};
-
-void checkObjectLength(const ObjectChecker& check, const std::string& key, double value) {
-  if (!(std::isfinite(value) && value > 0.0 && value <= kMaxCoordinateM))
-    check.fail(key, fmt::format("must be a length in metres, > 0 and <= {:g} (got {})", kMaxCoordinateM,
-                                check.got(key, value)));
-}
-
-// Placement vectors of shapes built in code must already be unit length
-// (the loader normalises what a file gives).
-constexpr double kUnitEps = 1e-9;
-
-void checkUnit(const ObjectChecker& check, const std::string& key, const glm::dvec3& v) {
-  const double length = glm::length(v);
-  if (!finite(v) || !(std::abs(length - 1.0) <= kUnitEps))
-    check.fail(key, fmt::format("must be a unit vector (got {}, of length {})", check.got(key, v), jf::fmtNum(length)));
-}
-
-void validateShape(const Shape& shape, const ObjectChecker& check) {
-  if (shape.type != ShapeType::Mesh) checkPoint(check.c, check.at + "/center", shape.center, check.note);
-  if (shape.type == ShapeType::Rect || shape.type == ShapeType::Disk) checkUnit(check, "normal", shape.normal);
-  if (shape.type == ShapeType::Disk || shape.type == ShapeType::Sphere) checkObjectLength(check, "radius_m", shape.radiusM);
-  switch (shape.type) {
-    case ShapeType::Rect: {
-      checkObjectLength(check, "size_m/0", shape.sizeM.x);
-      checkObjectLength(check, "size_m/1", shape.sizeM.y);
-      const glm::dvec3& u = shape.uAxis;
-      if (!finite(u) || !jf::safeNormalize(u)) check.fail("u_axis", "must be finite and not zero-length");
-      if (glm::length(glm::cross(*jf::safeNormalize(u), shape.normal)) < kCollinearEps)
-        check.fail("u_axis", fmt::format("{} is parallel to the normal; u_axis must lie (roughly) in the rect's plane",
-                                         check.got("u_axis", u)));
-      if (!(std::abs(glm::length(u) - 1.0) <= kUnitEps && std::abs(glm::dot(u, shape.normal)) <= kUnitEps))
-        check.fail("u_axis", fmt::format("must be a unit vector perpendicular to the normal (got {})",
-                                         check.got("u_axis", u)));
-      break;
-    }
-    case ShapeType::Disk:
-    case ShapeType::Sphere: break;
-    case ShapeType::Mesh: {
-      const auto& vertices = shape.vertices;
-      const auto& triangles = shape.triangles;
-      if (triangles.empty()) check.fail("triangles", "a mesh needs at least one triangle");
-      if (vertices.size() > kMaxMeshVertices)
-        check.fail("vertices", fmt::format("has {} vertices; a mesh has at most {}", vertices.size(), kMaxMeshVertices));
-      for (size_t i = 0; i < vertices.size(); ++i) {
-        const glm::dvec3& p = vertices[i];
-        if (!finite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinateM)
-          check.fail(fmt::format("vertices/{}", i),
-                     fmt::format("must be finite with every coordinate's magnitude <= {:g} m (got [{}, {}, {}])",
-                                 kMaxCoordinateM, jf::fmtNum(p.x), jf::fmtNum(p.y), jf::fmtNum(p.z)));
-      }
-      for (size_t k = 0; k < triangles.size(); ++k)
-        for (uint32_t v : triangles[k])
-          if (v >= vertices.size())
-            check.fail(fmt::format("triangles/{}", k), fmt::format("refers to vertex {}, but the mesh has {} vertices",
-                                                                   v, vertices.size()));
-      if (auto k = findDegenerateTriangle(vertices, triangles))
-        check.fail(fmt::format("triangles/{}", *k),
-                   fmt::format("has zero area (vertices {}, {}, {})", triangles[*k][0], triangles[*k][1],
-                               triangles[*k][2]));
-      break;
-    }
+class ObjectChecker final : public ShapeFieldCheck {
+ public:
+  ObjectChecker(const SceneChecker& c, std::string at, std::string note)
+      : c_(c), at_(std::move(at)), note_(std::move(note)) {}
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
+    c_.fail(pointer(key), what, note_);
   }
-}
+  std::string got(const std::string& key, double fallback) const override { return c_.got(pointer(key), fallback); }
+  std::string got(const std::string& key, const glm::dvec3& fallback) const override {
+    return c_.got(pointer(key), fallback);
+  }
+  bool given(const std::string& key) const { return c_.given(pointer(key)) != nullptr; }
+
+ private:
+  std::string pointer(const std::string& key) const { return at_ + "/" + key; }
+  const SceneChecker& c_;
+  std::string at_, note_;
+};
 
 // A material unit's view of the checker: keys relative to the object's
 // material.
@@ -261,50 +209,26 @@ class MaterialChecker final : public MaterialFieldCheck {
   explicit MaterialChecker(const ObjectChecker& object) : object_(object) {}
   [[noreturn]] void fail(const std::string& key, const std::string& what) const override { object_.fail(at(key), what); }
   std::string got(const std::string& key, double fallback) const override { return object_.got(at(key), fallback); }
-  bool given(const std::string& key) const override { return object_.c.given(object_.at + "/" + at(key)) != nullptr; }
+  bool given(const std::string& key) const override { return object_.given(at(key)); }
 
  private:
   static std::string at(const std::string& key) { return key.empty() ? "material" : "material/" + key; }
   const ObjectChecker& object_;
 };
 
-// A material that refracts into its shape needs the shape to have an inside.
-void checkClosedFor(const MaterialTypeUnit& material, const Shape& shape, const ObjectChecker& check) {
-  if (shape.type == ShapeType::Rect || shape.type == ShapeType::Disk)
-    check.fail("material", fmt::format("a {} needs a closed shape: a sphere or a closed mesh (a {} has no inside)",
-                                       material.name, shapeTypeName(shape.type)));
-  if (shape.type == ShapeType::Mesh)
-    if (auto fault = findEdgeFault(shape.triangles))
-      check.fail("material", fmt::format("a {} needs a closed shape: a sphere or a closed mesh; this mesh is "
-                                         "not closed: {}",
-                                         material.name, describeEdgeFault(*fault, 0, [](size_t k) {
-                                           return fmt::format("triangle {}", k);
-                                         })));
-  // Consistent winding can still be inside out: glass then refracts every
-  // beam the wrong way. Outward faces enclose a positive signed volume.
-  if (shape.type == ShapeType::Mesh) {
-    double volume6 = 0.0;  // six times the signed volume
-    for (const auto& t : shape.triangles)
-      volume6 += glm::dot(shape.vertices[t[0]], glm::cross(shape.vertices[t[1]], shape.vertices[t[2]]));
-    if (!(volume6 > 0.0))
-      check.fail("material", fmt::format("a {} mesh must face outwards (counter-clockwise seen from outside), "
-                                         "but {}'s faces enclose a signed volume of {:g} m^3; turn every face round",
-                                         material.name,
-                                         shape.meshFile.empty() ? std::string("this mesh")
-                                                                : jf::jsonQuoted(shape.meshFile.string()),
-                                         volume6 / 6.0));
-  }
-}
-
 void validateObject(const SceneObject& object, size_t index, const Scene& scene, const SceneChecker& c) {
-  const ObjectChecker check{c, object.label.empty() ? "/objects/" + std::to_string(index) : object.label,
-                            object.name.empty() ? "" : fmt::format(" (object {})", jf::jsonQuoted(object.name))};
-  if (uint32_t(object.shape.type) > uint32_t(ShapeType::Mesh)) check.fail("type", "is not a shape type");
-  validateShape(object.shape, check);
+  const ObjectChecker check(c, object.label.empty() ? "/objects/" + std::to_string(index) : object.label,
+                            object.name.empty() ? "" : fmt::format(" (object {})", jf::jsonQuoted(object.name)));
+  if (uint32_t(object.shape.type) >= shapeTypeUnits().size()) check.fail("type", "is not a shape type");
+  const ShapeTypeUnit& shape = shapeTypeUnit(object.shape.type);
+  shape.validate(object.shape, check);
   if (uint32_t(object.material.type) >= materialTypeUnits().size()) check.fail("material/type", "is not a material type");
   const MaterialTypeUnit& material = materialTypeUnit(object.material.type);
   material.validate(object.material, scene.spectrum.minNm, scene.spectrum.maxNm, MaterialChecker(check));
-  if (material.needsClosedShape) checkClosedFor(material, object.shape, check);
+  // A material that refracts into its shape needs the shape to have an inside.
+  if (material.needsClosedShape)
+    if (const std::string why = shape.notClosedBecause(object.shape, material.name); !why.empty())
+      check.fail("material", why);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #pragma once
-// Inside the scene module: triangle meshes. Reading Wavefront OBJ files
-// (Debian's tinyobjloader) into a mesh object's shape, in world coordinates,
-// and the checks on triangles that meshes built in code get too
-// (validate_scene.cpp).
+// Inside the shapes module: triangle meshes, for the mesh unit
+// (mesh_shape.cpp). Reading Wavefront OBJ files (Debian's tinyobjloader)
+// into a mesh object's shape, in world coordinates, and the checks on
+// triangles that meshes built in code get too.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "json/json_fields.h"
-#include "scene/scene_object.h"
+#include "shapes/shape.h"
 
 namespace spectrace {
 

@@ -1,4 +1,4 @@
-#include "scene/obj_mesh.h"
+#include "shapes/obj_mesh.h"
 
 #include <sys/stat.h>
 
@@ -13,8 +13,8 @@
 #include <glm/geometric.hpp>
 #include <tiny_obj_loader.h>
 
+#include "camera/world_limits.h"
 #include "json/input_file.h"
-#include "scene/scene_limits.h"
 
 namespace spectrace {
 
