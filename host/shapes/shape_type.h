@@ -3,7 +3,8 @@
 // keys, checks, the device primitives it becomes and their bounds, whether
 // it bounds a solid) lives in its own file, shapes/<kind>_shape.cpp; the
 // kernel's side is one file per primitive in shaders/shapes/.
-// shapeTypeUnits() in shape_types.cpp is the only table.
+// They are listed once, in host/shapes/CMakeLists.txt
+// (spectrace_unit_table), from which shape_types.cpp builds the table.
 #include <cstdint>
 #include <string>
 #include <string_view>

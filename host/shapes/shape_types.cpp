@@ -6,15 +6,13 @@
 
 namespace spectrace {
 
-// Each defined in its own unit, shapes/<kind>_shape.cpp.
-const ShapeTypeUnit& rectShapeUnit();
-const ShapeTypeUnit& diskShapeUnit();
-const ShapeTypeUnit& sphereShapeUnit();
-const ShapeTypeUnit& meshShapeUnit();
+// Each defined in its own unit, shapes/<kind>_shape.cpp, listed in
+// host/shapes/CMakeLists.txt (spectrace_unit_table).
+#include "shape_units.inc"
 
 const std::vector<const ShapeTypeUnit*>& shapeTypeUnits() {
   static const std::vector<const ShapeTypeUnit*> units = [] {
-    std::vector<const ShapeTypeUnit*> all = {&rectShapeUnit(), &diskShapeUnit(), &sphereShapeUnit(), &meshShapeUnit()};
+    std::vector<const ShapeTypeUnit*> all = {SPECTRACE_SHAPE_UNITS};
     for (size_t i = 0; i < all.size(); ++i)
       if (uint32_t(all[i]->type) != i) throw std::logic_error("shape type units out of ShapeType order");
     return all;
