@@ -487,6 +487,8 @@ static_assert(offsetof(ResolvedPixel, totalCount) == 32);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(CeilingPush) == 56);
 static_assert(sizeof(ResolvePush) == 8);
+// The channels' names in state files and messages.
+inline constexpr const char* kFilmChannelNames[kFilmChannelCount] = {"counts", "colour_sums", "squared_weight_sums"};
 static_assert(colourCounterOffset(7) == filmChannelOffset(kFilmChannelColour, 7, filmChannelSetOf(true, false)),
               "the kernel's colour offset is the channel list's");
 static_assert(countersPerPixelOf(7, filmChannelSetOf(true, true)) == 11 &&

@@ -159,7 +159,7 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   gpu.trace(0, 1'000'000);
   const SpectralHistogram h = gpu.download();
   double y = 0.0;
-  for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums[p * 3 + 1]);
+  for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums()[p * 3 + 1]);
   const double units = double(h.total());
   ASSERT_GT(h.countedBeams, 10'000u);
   const float ybar = device::BeamKernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns, plan.device.cmfTable).cmfAtWavelength(550.0f).y;

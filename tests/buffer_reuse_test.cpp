@@ -37,9 +37,9 @@ RenderResult renderOn(const Device& device, const Scene& scene) {
 
 void expectIdentical(const RenderResult& a, const RenderResult& b, const char* what) {
   SCOPED_TRACE(what);
-  EXPECT_EQ(a.histogram.counts, b.histogram.counts);
-  EXPECT_EQ(a.histogram.colourSums, b.histogram.colourSums);
-  EXPECT_EQ(a.histogram.squaredWeightSums, b.histogram.squaredWeightSums);
+  EXPECT_EQ(a.histogram.counts(), b.histogram.counts());
+  EXPECT_EQ(a.histogram.colourSums(), b.histogram.colourSums());
+  EXPECT_EQ(a.histogram.squaredWeightSums(), b.histogram.squaredWeightSums());
   EXPECT_EQ(a.histogram.countedBeams, b.histogram.countedBeams);
   EXPECT_EQ(a.image.rgb, b.image.rgb);
   EXPECT_EQ(a.image.xyz, b.image.xyz);

@@ -88,7 +88,7 @@ TEST(ColourFromBins, AgreesWithPerBeamColourOnTheSameBeams) {
   ASSERT_TRUE(shortcut.plan.film.colourFromBins);
   ASSERT_FALSE(shortcut.histogram.hasExactColour()) << "no per-beam colour counters with the shortcut";
   ASSERT_TRUE(perBeam.histogram.hasExactColour());
-  ASSERT_EQ(shortcut.histogram.counts, perBeam.histogram.counts) << "the same beams land in the same bins";
+  ASSERT_EQ(shortcut.histogram.counts(), perBeam.histogram.counts()) << "the same beams land in the same bins";
 
   const Observer& observer = cie1931Observer();
   const auto flat = binAveragedCmf(observer, 360.0, 830.0, kBins);
@@ -100,7 +100,7 @@ TEST(ColourFromBins, AgreesWithPerBeamColourOnTheSameBeams) {
   glm::dvec3 perBeamSum(0.0);
   for (size_t p = 0; p < pixels; ++p) {
     for (uint32_t b = 0; b < h.bins; ++b) nBin[b + offset] += double(h.at(uint32_t(p), b));
-    for (int k = 0; k < 3; ++k) perBeamSum[k] += double(h.colourSums[p * 3 + k]) / device::kColourFixedPointScale;
+    for (int k = 0; k < 3; ++k) perBeamSum[k] += double(h.colourSums()[p * 3 + k]) / device::kColourFixedPointScale;
   }
   const double binWidth = (830.0 - 360.0) / kBins;
   bool flatMissed = false;

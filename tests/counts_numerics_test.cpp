@@ -101,7 +101,7 @@ SpectralHistogram presetHistogram(const CompiledScene& plan, const SpectralHisto
         if (lit >= std::size(countPresets)) throw std::logic_error("the four lasers should light exactly four cells");
         preset.at(pixel, bin) = countPresets[lit];
         if (preset.hasExactColour())
-          for (int k = 0; k < 3; ++k) preset.colourSums[pixel * 3 + k] = colourPresets[(lit + k) % 3];
+          for (int k = 0; k < 3; ++k) preset.colourSums()[pixel * 3 + k] = colourPresets[(lit + k) % 3];
         ++lit;
       }
   if (lit != std::size(countPresets)) throw std::logic_error("the four lasers should light exactly four cells");
@@ -112,7 +112,7 @@ SpectralHistogram presetHistogram(const CompiledScene& plan, const SpectralHisto
     for (uint32_t bin = 0; bin < plan.film.bins; ++bin) pixelHits += hits.at(pixel, bin);
     if (pixelHits != 0) continue;
     preset.at(pixel, next % plan.film.bins) = idle[next];
-    if (preset.hasExactColour()) preset.colourSums[pixel * 3 + next % 3] = idle[next];
+    if (preset.hasExactColour()) preset.colourSums()[pixel * 3 + next % 3] = idle[next];
     ++next;
   }
   return preset;
@@ -134,8 +134,8 @@ void expectExactSum(const SpectralHistogram& result, const SpectralHistogram& pr
                       << int64_t(r[i] - expected) << ")";
     }
   };
-  check(result.counts, preset.counts, hits.counts, "bin count", result.bins);
-  check(result.colourSums, preset.colourSums, hits.colourSums, "colour sum", 3);
+  check(result.counts(), preset.counts(), hits.counts(), "bin count", result.bins);
+  check(result.colourSums(), preset.colourSums(), hits.colourSums(), "colour sum", 3);
   EXPECT_EQ(wrong, 0u) << name;
 }
 
@@ -159,8 +159,8 @@ TEST(CountsNumerics, DeviceCountersStayExactPast2To32) {
   CpuTraceOptions options;
   options.threads = 2;
   traceOnCpu(plan, kFirst, 2 * uint64_t(kBeams), cpuHits, options);
-  EXPECT_EQ(hits.counts, cpuHits.counts) << "device and CPU reference disagree on where the beams land";
-  EXPECT_EQ(hits.colourSums, cpuHits.colourSums) << "device and CPU reference disagree on the colour sums";
+  EXPECT_EQ(hits.counts(), cpuHits.counts()) << "device and CPU reference disagree on where the beams land";
+  EXPECT_EQ(hits.colourSums(), cpuHits.colourSums()) << "device and CPU reference disagree on the colour sums";
 
   const SpectralHistogram preset = presetHistogram(plan, hits);
   PresetTrace device(plan, preset);
@@ -209,8 +209,8 @@ TEST(CountsNumerics, CpuReferenceCountersStayExactPast2To32) {
   // Merging partial renders is exact too.
   SpectralHistogram merged = preset;
   merged.merge(hits);
-  EXPECT_EQ(merged.counts, histogram.counts);
-  EXPECT_EQ(merged.colourSums, histogram.colourSums);
+  EXPECT_EQ(merged.counts(), histogram.counts());
+  EXPECT_EQ(merged.colourSums(), histogram.colourSums());
 }
 
 // Presetting through Tracer::upload, then tracing on the Vulkan tracer.
@@ -386,8 +386,8 @@ TEST(CountsNumerics, RendersAtBeamIndicesNear2To32And2To40) {
     gpu.trace(s.firstBeam, kBeams / 4);
     const SpectralHistogram gpuPart = gpu.download();
     uint64_t moved = 0;
-    for (size_t i = 0; i < cpuPart.counts.size(); ++i)
-      moved += cpuPart.counts[i] > gpuPart.counts[i] ? cpuPart.counts[i] - gpuPart.counts[i] : 0;
+    for (size_t i = 0; i < cpuPart.counts().size(); ++i)
+      moved += cpuPart.counts()[i] > gpuPart.counts()[i] ? cpuPart.counts()[i] - gpuPart.counts()[i] : 0;
     std::printf("%s: CPU and GPU histograms of %llu beams differ by %llu counts\n", s.name,
                 (unsigned long long)(kBeams / 4), (unsigned long long)moved);
     EXPECT_EQ(cpuPart.total(), gpuPart.total()) << s.name;

@@ -57,15 +57,15 @@ TEST(CpuGpuAgreement, HistogramsOfARenderAgree) {
   SpectralHistogram fromCpu;
   traceOnCpu(plan, 0, 3'000'000, fromCpu);
   uint64_t absDiff = 0;
-  for (size_t i = 0; i < fromCpu.counts.size(); ++i)
-    absDiff += fromCpu.counts[i] > fromGpu.counts[i] ? fromCpu.counts[i] - fromGpu.counts[i] : fromGpu.counts[i] - fromCpu.counts[i];
+  for (size_t i = 0; i < fromCpu.counts().size(); ++i)
+    absDiff += fromCpu.counts()[i] > fromGpu.counts()[i] ? fromCpu.counts()[i] - fromGpu.counts()[i] : fromGpu.counts()[i] - fromCpu.counts()[i];
   const double moved = 0.5 * double(absDiff) / double(fromCpu.total());
   std::printf("histograms: %llu hits on the CPU, %llu on the GPU, %.6f%% of counts in different cells\n",
               (unsigned long long)fromCpu.total(), (unsigned long long)fromGpu.total(), 100.0 * moved);
   EXPECT_LE(moved, 1e-4);
   // With every beam agreeing, the exact-colour sums agree too.
   ASSERT_TRUE(fromGpu.hasExactColour());
-  EXPECT_EQ(fromCpu.colourSums, fromGpu.colourSums);
+  EXPECT_EQ(fromCpu.colourSums(), fromGpu.colourSums());
 }
 
 TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {
@@ -90,7 +90,7 @@ TEST(CpuGpuAgreement, HistogramSplitAcrossChunksMatchesUnsplit) {
   SpectralHistogram fromCpu;
   traceOnCpu(plan, 0, 2'000'000, fromCpu);
   uint64_t differing = 0;
-  for (size_t i = 0; i < fromCpu.counts.size(); ++i) differing += fromCpu.counts[i] != fromGpu.counts[i];
+  for (size_t i = 0; i < fromCpu.counts().size(); ++i) differing += fromCpu.counts()[i] != fromGpu.counts()[i];
   EXPECT_GT(fromCpu.total(), 100'000u);
   EXPECT_LE(differing, fromCpu.total() / 10'000);
 }

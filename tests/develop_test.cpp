@@ -28,7 +28,7 @@ namespace {
 Scene sceneNamed(const std::string& name) { return loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/" + name); }
 
 uint64_t largestBinCount(const SpectralHistogram& h) {
-  return h.counts.empty() ? 0 : *std::max_element(h.counts.begin(), h.counts.end());
+  return h.counts().empty() ? 0 : *std::max_element(h.counts().begin(), h.counts().end());
 }
 
 void expectSameImage(const RenderImage& a, const RenderImage& b, const std::string& what) {
@@ -63,7 +63,7 @@ TEST_P(DevelopWithoutDownload, EqualsDevelopingTheDownloadedHistogram) {
   // The error channel is the estimate of pixel_variance.h, pixel by pixel.
   const std::vector<double> relativeVariance = estimatedRelativeVariance(film, kBeams);
   for (size_t p = 0; p < relativeVariance.size(); ++p) {
-    const auto first = film.counts.begin() + std::ptrdiff_t(p * film.bins);
+    const auto first = film.counts().begin() + std::ptrdiff_t(p * film.bins);
     const uint64_t total = std::accumulate(first, first + film.bins, uint64_t(0));
     const float expected = std::isfinite(relativeVariance[p])
                                ? float(std::sqrt(relativeVariance[p]) * (double(total) * parameters.irradiancePerCount))
@@ -104,8 +104,8 @@ TEST(DevelopWithoutDownload, RenderWithoutTheFilmGivesTheSameImage) {
     const RenderResult withFilm = render(scene, options);
     options.outputs.downloadFilm = false;
     const RenderResult withoutFilm = render(scene, options);
-    EXPECT_TRUE(withoutFilm.histogram.counts.empty());
-    ASSERT_FALSE(withFilm.histogram.counts.empty());
+    EXPECT_TRUE(withoutFilm.histogram.counts().empty());
+    ASSERT_FALSE(withFilm.histogram.counts().empty());
     expectSameImage(withoutFilm.image, withFilm.image, "render without the film");
     EXPECT_EQ(withoutFilm.summary.countedBeams, withFilm.histogram.countedBeams);
     EXPECT_EQ(withoutFilm.summary.largestCount, largestBinCount(withFilm.histogram));

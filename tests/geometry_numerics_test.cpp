@@ -109,7 +109,7 @@ GpuRun traceOnGpu(const Scene& scene, const CompiledScene& plan, uint64_t firstB
 std::vector<uint64_t> pixelCounts(const SpectralHistogram& h) {
   std::vector<uint64_t> counts(size_t(h.pixelsX) * h.pixelsY, 0);
   for (size_t p = 0; p < counts.size(); ++p)
-    for (uint32_t b = 0; b < h.bins; ++b) counts[p] += h.counts[p * h.bins + b];
+    for (uint32_t b = 0; b < h.bins; ++b) counts[p] += h.counts()[p * h.bins + b];
   return counts;
 }
 
@@ -349,15 +349,15 @@ TEST(GeometryNumericsScale, CameraFarFromTheOriginMatchesTheSameSetupAtTheOrigin
     expectCountsMatch(run.histogram, scene.camera, kBeams, aimGain(plan), probability, std::string(c.name) + " (GPU)");
     expectFiniteImage(run.image, c.name);
     EXPECT_GE(beamByBeamAgreement(plan, 0, 500'000, c.name), 0.9999);
-    if (first.counts.empty()) {
+    if (first.counts().empty()) {
       first = run.histogram;
     } else {
       // Informational: the float tables of the two setups may differ by an
       // ulp, so a few beams may land elsewhere; both match the exact answer.
       uint64_t differing = 0;
-      for (size_t i = 0; i < first.counts.size(); ++i) differing += first.counts[i] != run.histogram.counts[i];
+      for (size_t i = 0; i < first.counts().size(); ++i) differing += first.counts()[i] != run.histogram.counts()[i];
       std::printf("far camera vs origin: %llu of %zu histogram cells differ\n", (unsigned long long)differing,
-                  first.counts.size());
+                  first.counts().size());
     }
   }
 }

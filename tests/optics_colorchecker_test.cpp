@@ -263,9 +263,9 @@ TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) 
 
   const RenderResult prefix = render(scene, optionsFor(DeviceChoice::Cpu, kGpuBeams));
   ASSERT_EQ(prefix.deviceKind, DeviceKind::Cpu);
-  EXPECT_TRUE(gpu.histogram.counts == prefix.histogram.counts) << "lavapipe and the CPU reference binned the same beams differently";
-  EXPECT_TRUE(gpu.histogram.colourSums == prefix.histogram.colourSums) << "exact colour sums differ";
-  EXPECT_TRUE(gpu.histogram.squaredWeightSums == prefix.histogram.squaredWeightSums) << "squared weights differ";
+  EXPECT_TRUE(gpu.histogram.counts() == prefix.histogram.counts()) << "lavapipe and the CPU reference binned the same beams differently";
+  EXPECT_TRUE(gpu.histogram.colourSums() == prefix.histogram.colourSums()) << "exact colour sums differ";
+  EXPECT_TRUE(gpu.histogram.squaredWeightSums() == prefix.histogram.squaredWeightSums()) << "squared weights differ";
   checkChart(scene, gpu.image, "lavapipe, to 5 sigma of its own noise", 0.0);
 
   RenderOptions options = optionsFor(DeviceChoice::Cpu, kCpuBeams);

@@ -106,7 +106,7 @@ double chiSquarePValue(double chi2, int dof) {
 // A pixel's counts over all its bins.
 uint64_t pixelCounts(const SpectralHistogram& h, size_t pixel) {
   uint64_t sum = 0;
-  for (uint32_t b = 0; b < h.bins; ++b) sum += h.counts[pixel * h.bins + b];
+  for (uint32_t b = 0; b < h.bins; ++b) sum += h.counts()[pixel * h.bins + b];
   return sum;
 }
 

@@ -48,9 +48,9 @@ SpectralHistogram gpuProfile(const CompiledScene& plan, uint32_t stage) {
 }
 
 void expectSameHistogram(const SpectralHistogram& a, const SpectralHistogram& b, const std::string& what) {
-  EXPECT_EQ(a.counts, b.counts) << what;
-  EXPECT_EQ(a.colourSums, b.colourSums) << what;
-  EXPECT_EQ(a.squaredWeightSums, b.squaredWeightSums) << what;
+  EXPECT_EQ(a.counts(), b.counts()) << what;
+  EXPECT_EQ(a.colourSums(), b.colourSums()) << what;
+  EXPECT_EQ(a.squaredWeightSums(), b.squaredWeightSums()) << what;
   EXPECT_EQ(a.countedBeams, b.countedBeams) << what;
 }
 
@@ -88,23 +88,23 @@ TEST(Profile, EveryStageRunsOnBothDevicesAlike) {
     const std::string what = "stage " + std::to_string(stage);
     const SpectralHistogram cpu = cpuProfile(plan, stage);
     expectSameHistogram(gpuProfile(plan, stage), cpu, what + ", gpu vs cpu");
-    const uint64_t total = std::accumulate(cpu.counts.begin(), cpu.counts.end(), uint64_t(0));
+    const uint64_t total = std::accumulate(cpu.counts().begin(), cpu.counts().end(), uint64_t(0));
     if (stage < device::kProfileStageCounting) {
       // Only the dead-code guard writes, when a beam's 32-bit hash equals a
       // constant: with this fixed seed, for none of these beams.
       EXPECT_EQ(total, 0u) << what;
       EXPECT_EQ(cpu.countedBeams, 0u) << what;
     } else {
-      EXPECT_EQ(cpu.counts, full.counts) << what << ": unaimed, the bins are the full kernel's";
+      EXPECT_EQ(cpu.counts(), full.counts()) << what << ": unaimed, the bins are the full kernel's";
       EXPECT_EQ(cpu.countedBeams, full.countedBeams) << what;
       EXPECT_GT(cpu.countedBeams, 1000u) << what;
     }
     if (stage == device::kProfileStageCounting) {
-      const uint64_t colour = std::accumulate(cpu.colourSums.begin(), cpu.colourSums.end(), uint64_t(0));
+      const uint64_t colour = std::accumulate(cpu.colourSums().begin(), cpu.colourSums().end(), uint64_t(0));
       EXPECT_EQ(colour, 0u) << what << ": exact colour is off";
     }
     if (stage >= device::kProfileStageColour) {
-      EXPECT_EQ(cpu.colourSums, full.colourSums) << what;
+      EXPECT_EQ(cpu.colourSums(), full.colourSums()) << what;
     }
   }
 }

@@ -63,7 +63,7 @@ TEST(Render, CancelledRenderKeepsExactlyTheFinishedBeams) {
     // is normalised by the beams actually traced.
     SpectralHistogram reference;
     traceOnCpu(partial.plan, 0, partial.beamsTraced, reference);
-    EXPECT_EQ(partial.histogram.counts, reference.counts);
+    EXPECT_EQ(partial.histogram.counts(), reference.counts());
     const double perCount = partial.plan.irradiancePerCount(partial.beamsTraced);
     uint64_t pixelCount = 0;
     for (uint32_t b = 0; b < partial.histogram.bins; ++b) pixelCount += partial.histogram.at(0, b);
@@ -89,9 +89,9 @@ TEST(Render, CheckpointsCarryTheFinishedBeams) {
 
 // Counts and exact-colour sums, both integers, must agree bit for bit.
 void expectSameHistogram(const SpectralHistogram& a, const SpectralHistogram& b, const char* what) {
-  EXPECT_EQ(a.counts, b.counts) << what;
-  EXPECT_EQ(a.colourSums, b.colourSums) << what;
-  EXPECT_EQ(a.squaredWeightSums, b.squaredWeightSums) << what;
+  EXPECT_EQ(a.counts(), b.counts()) << what;
+  EXPECT_EQ(a.colourSums(), b.colourSums()) << what;
+  EXPECT_EQ(a.squaredWeightSums(), b.squaredWeightSums()) << what;
   EXPECT_EQ(a.countedBeams, b.countedBeams) << what;
 }
 

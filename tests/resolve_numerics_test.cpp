@@ -33,7 +33,7 @@ TEST_P(ResolveManyBins, GpuIrradianceSumsEveryBin) {
   gpu.trace(0, kBeams);
   cpu.trace(0, kBeams);
   const SpectralHistogram gpuFilm = gpu.download(), cpuFilm = cpu.download();
-  ASSERT_EQ(gpuFilm.counts, cpuFilm.counts) << "the same beams land in the same bins";
+  ASSERT_EQ(gpuFilm.counts(), cpuFilm.counts()) << "the same beams land in the same bins";
   ASSERT_GT(gpuFilm.total(), 0u);
   // Beams in bins past 65535 exist here (D65 has power up to 830 nm), so a
   // cut-short sum would lose them.

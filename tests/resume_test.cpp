@@ -52,9 +52,9 @@ TEST_P(Resume, EndsBitIdenticalToAnUninterruptedRender) {
   const RenderResult resumed = session.render(rest);
 
   EXPECT_EQ(resumed.beamsTraced, kBeams);
-  EXPECT_EQ(resumed.histogram.counts, whole.histogram.counts);
-  EXPECT_EQ(resumed.histogram.colourSums, whole.histogram.colourSums);
-  EXPECT_EQ(resumed.histogram.squaredWeightSums, whole.histogram.squaredWeightSums);
+  EXPECT_EQ(resumed.histogram.counts(), whole.histogram.counts());
+  EXPECT_EQ(resumed.histogram.colourSums(), whole.histogram.colourSums());
+  EXPECT_EQ(resumed.histogram.squaredWeightSums(), whole.histogram.squaredWeightSums());
   EXPECT_EQ(resumed.image.rgb, whole.image.rgb);
   EXPECT_EQ(resumed.image.xyz, whole.image.xyz);
   EXPECT_EQ(resumed.image.irradiance, whole.image.irradiance);

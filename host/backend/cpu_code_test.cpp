@@ -42,9 +42,9 @@ SpectralHistogram render(const CompiledScene& plan, CpuCode code, uint32_t stage
 
 void expectSameFilm(const SpectralHistogram& a, const SpectralHistogram& b, const std::string& what) {
   EXPECT_EQ(a.countedBeams, b.countedBeams) << what;
-  EXPECT_TRUE(a.counts == b.counts) << what << ": bin counts differ";
-  EXPECT_TRUE(a.colourSums == b.colourSums) << what << ": colour sums differ";
-  EXPECT_TRUE(a.squaredWeightSums == b.squaredWeightSums) << what << ": squared weights differ";
+  EXPECT_TRUE(a.counts() == b.counts()) << what << ": bin counts differ";
+  EXPECT_TRUE(a.colourSums() == b.colourSums()) << what << ": colour sums differ";
+  EXPECT_TRUE(a.squaredWeightSums() == b.squaredWeightSums()) << what << ": squared weights differ";
 }
 
 class CpuCodes : public ::testing::Test {

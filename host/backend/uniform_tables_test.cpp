@@ -75,7 +75,7 @@ TEST(UniformTables, UniformAndStorageTablesGiveTheSameFilm) {
   const SpectralHistogram b = storage.download();
   EXPECT_GT(a.countedBeams, 1000u);
   EXPECT_EQ(a.countedBeams, b.countedBeams);
-  EXPECT_EQ(a.counts, b.counts);
+  EXPECT_EQ(a.counts(), b.counts());
 }
 
 }  // namespace

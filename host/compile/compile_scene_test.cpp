@@ -104,7 +104,7 @@ TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
   EXPECT_NEAR(double(plan.device.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
   const SpectralHistogram h = plan.film.emptyHistogram();
   EXPECT_TRUE(h.isWeighted());
-  EXPECT_EQ(h.squaredWeightSums.size(), plan.film.pixelCount());
+  EXPECT_EQ(h.squaredWeightSums().size(), plan.film.pixelCount());
 }
 
 TEST(AimedPlan, NoAimIsTheAnalogPlan) {

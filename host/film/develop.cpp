@@ -96,9 +96,9 @@ RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParame
   const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
   if (summary) *summary = FilmSummary{histogram.countedBeams, 0};
   for (size_t p = 0; p < pixels; ++p) {
-    const PixelCounters counters{histogram.counts.data() + p * histogram.bins, 0, histogram.bins,
-                                 histogram.hasExactColour() ? histogram.colourSums.data() + p * 3 : nullptr,
-                                 histogram.isWeighted() ? histogram.squaredWeightSums[p] : 0};
+    const PixelCounters counters{histogram.counts().data() + p * histogram.bins, 0, histogram.bins,
+                                 histogram.hasExactColour() ? histogram.colourSums().data() + p * 3 : nullptr,
+                                 histogram.isWeighted() ? histogram.squaredWeightSums()[p] : 0};
     resolvePixel(counters, p, parameters, histogram.unitsPerBeam, image, summary);
   }
   return image;
@@ -132,8 +132,8 @@ float irradianceErrorOfPixel(uint64_t total, uint64_t squaredWeights, uint64_t b
 std::vector<float> developSpectrum(const SpectralHistogram& histogram, const ResolveParameters& parameters,
                                    double binWidthNm) {
   const double perCount = parameters.irradiancePerCount / binWidthNm;
-  std::vector<float> spectrum(histogram.counts.size());
-  for (size_t i = 0; i < spectrum.size(); ++i) spectrum[i] = float(double(histogram.counts[i]) * perCount);
+  std::vector<float> spectrum(histogram.counts().size());
+  for (size_t i = 0; i < spectrum.size(); ++i) spectrum[i] = float(double(histogram.counts()[i]) * perCount);
   return spectrum;
 }
 

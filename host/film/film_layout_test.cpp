@@ -68,7 +68,7 @@ TEST(FilmLayout, PackRefusesCountsTheDeviceDoesNotStore) {
   const FilmLayout film = smallFilm(true, 1024);
   std::vector<uint64_t> counters(film.storedCounterCount());
   SpectralHistogram outsideWindow = film.emptyHistogram();
-  outsideWindow.colourSums[0] = 1;  // pixel 0 is outside the window
+  outsideWindow.colourSums()[0] = 1;  // pixel 0 is outside the window
   EXPECT_THROW(packDeviceCounters(outsideWindow, film, 0, counters), std::invalid_argument);
   SpectralHistogram outsideBins = film.emptyHistogram();
   outsideBins.at(uint32_t(film.fullPixelOfStored(0)), 0) = 1;  // bin 0 is below the stored bins

@@ -60,9 +60,9 @@ TEST(FilmState, RoundTripsBitForBit) {
   const fs::path file = tempFile("round.state");
   writeFilmState(file, state);
   const FilmState back = readFilmState(file);
-  EXPECT_EQ(back.histogram.counts, state.histogram.counts);
-  EXPECT_EQ(back.histogram.colourSums, state.histogram.colourSums);
-  EXPECT_EQ(back.histogram.squaredWeightSums, state.histogram.squaredWeightSums);
+  EXPECT_EQ(back.histogram.counts(), state.histogram.counts());
+  EXPECT_EQ(back.histogram.colourSums(), state.histogram.colourSums());
+  EXPECT_EQ(back.histogram.squaredWeightSums(), state.histogram.squaredWeightSums());
   EXPECT_EQ(back.histogram.countedBeams, state.histogram.countedBeams);
   EXPECT_EQ(back.ranges, state.ranges);
   EXPECT_EQ(mergeRefusal(back, back).find("overlap") != std::string::npos, true) << "a state overlaps itself";
@@ -260,9 +260,9 @@ TEST(FilmState, ShardsMergeIntoExactlyOneRender) {
   gpu.clear();
   gpu.trace(0, kBeams);
   const SpectralHistogram whole = gpu.download();
-  EXPECT_EQ(merged.histogram.counts, whole.counts);
-  EXPECT_EQ(merged.histogram.colourSums, whole.colourSums);
-  EXPECT_EQ(merged.histogram.squaredWeightSums, whole.squaredWeightSums);
+  EXPECT_EQ(merged.histogram.counts(), whole.counts());
+  EXPECT_EQ(merged.histogram.colourSums(), whole.colourSums());
+  EXPECT_EQ(merged.histogram.squaredWeightSums(), whole.squaredWeightSums());
   EXPECT_EQ(merged.histogram.countedBeams, whole.countedBeams);
   // Developed on the same device, the merged film gives the same pixels.
   const ResolveParameters parameters = resolveParametersFor(scene, plan, kBeams);

@@ -33,14 +33,14 @@ double pixelRelativeVariance(uint64_t total, uint64_t squaredWeights, uint64_t b
 std::vector<double> estimatedRelativeVariance(const SpectralHistogram& histogram, uint64_t beams) {
   if (beams == 0) throw std::invalid_argument("estimatedRelativeVariance: beams must be > 0");
   const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
-  if (histogram.counts.size() != pixels * histogram.bins ||
-      histogram.squaredWeightSums.size() != (histogram.isWeighted() ? pixels : 0))
+  if (histogram.counts().size() != pixels * histogram.bins ||
+      histogram.squaredWeightSums().size() != (histogram.isWeighted() ? pixels : 0))
     throw std::invalid_argument("estimatedRelativeVariance: histogram counts do not match its shape");
   std::vector<double> out(pixels);
   for (size_t p = 0; p < pixels; ++p) {
     uint64_t c = 0;
-    for (uint32_t b = 0; b < histogram.bins; ++b) c += histogram.counts[p * histogram.bins + b];
-    out[p] = pixelRelativeVariance(c, histogram.isWeighted() ? histogram.squaredWeightSums[p] : 0, beams,
+    for (uint32_t b = 0; b < histogram.bins; ++b) c += histogram.counts()[p * histogram.bins + b];
+    out[p] = pixelRelativeVariance(c, histogram.isWeighted() ? histogram.squaredWeightSums()[p] : 0, beams,
                                    histogram.unitsPerBeam, p);
   }
   return out;

@@ -2,10 +2,10 @@
 // Per-pixel spectral histogram: exact 64-bit counts, [pixel][bin], pixels
 // row-major from the top-left of the upright image. Integer counts make sums
 // order-independent and bit-reproducible, so partial renders merge exactly.
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "device_shared.h"
@@ -14,12 +14,7 @@ namespace spectrace {
 
 // A channel's name in state files and messages.
 inline const char* filmChannelName(uint32_t c) {
-  switch (c) {
-    case device::kFilmChannelBins: return "counts";
-    case device::kFilmChannelColour: return "colour_sums";
-    case device::kFilmChannelSquaredWeight: return "squared_weight_sums";
-    default: return "?";
-  }
+  return c < device::kFilmChannelCount ? device::kFilmChannelNames[c] : "?";
 }
 
 struct SpectralHistogram {
@@ -27,14 +22,14 @@ struct SpectralHistogram {
   // What one full-weight beam adds to its bin: 1 (plain hit counts) or, when
   // aimed beams carry fractional weights, kWeightUnitsFractional.
   uint64_t unitsPerBeam = 1;
-  std::vector<uint64_t> counts;
-  // With exact colour: per pixel, the sums of every counted beam's own
+  // Each channel's counters (device_shared.h, kFilmChannel*), pixel by
+  // pixel, filmChannelCounters of them each; empty when not held. Bins:
+  // [pixel][bin]. Exact colour: the sums of every counted beam's own
   // x̄, ȳ, z̄ (times its weight ratio) in colour fixed point
-  // (kColourFixedPointScale units); else empty.
-  std::vector<uint64_t> colourSums;
-  // With fractional weights: per pixel, the sum of squared weight ratios in
-  // the same units as counts (for the error estimate); else empty.
-  std::vector<uint64_t> squaredWeightSums;
+  // (kColourFixedPointScale units). Squared weights (fractional weights):
+  // the sum of squared weight ratios in the bins' units, for the error
+  // estimate.
+  std::array<std::vector<uint64_t>, device::kFilmChannelCount> channels;
   uint64_t countedBeams = 0;  // beams counted (each added to one bin)
 
   SpectralHistogram() = default;
@@ -45,35 +40,29 @@ struct SpectralHistogram {
       if (device::filmStoresChannel(held, c)) channel(c).assign(size_t(px) * py * device::filmChannelCounters(c, nbins), 0);
   }
 
-  // Channel `c`'s counters (device_shared.h, kFilmChannel*): the one place
-  // that names where each channel's counters are held; merge, the state
-  // file, the MPI reduce and pack/unpack iterate over the channels.
-  std::vector<uint64_t>& channel(uint32_t c) {
-    return const_cast<std::vector<uint64_t>&>(std::as_const(*this).channel(c));
-  }
-  const std::vector<uint64_t>& channel(uint32_t c) const {
-    switch (c) {
-      case device::kFilmChannelBins: return counts;
-      case device::kFilmChannelColour: return colourSums;
-      case device::kFilmChannelSquaredWeight: return squaredWeightSums;
-      default: throw std::out_of_range("no film channel " + std::to_string(c));
-    }
-  }
+  std::vector<uint64_t>& channel(uint32_t c) { return channels.at(c); }
+  const std::vector<uint64_t>& channel(uint32_t c) const { return channels.at(c); }
+  std::vector<uint64_t>& counts() { return channels[device::kFilmChannelBins]; }
+  const std::vector<uint64_t>& counts() const { return channels[device::kFilmChannelBins]; }
+  std::vector<uint64_t>& colourSums() { return channels[device::kFilmChannelColour]; }
+  const std::vector<uint64_t>& colourSums() const { return channels[device::kFilmChannelColour]; }
+  std::vector<uint64_t>& squaredWeightSums() { return channels[device::kFilmChannelSquaredWeight]; }
+  const std::vector<uint64_t>& squaredWeightSums() const { return channels[device::kFilmChannelSquaredWeight]; }
   // The channels held (bit c for channel c).
   uint32_t channelSet() const { return device::filmChannelSetOf(hasExactColour(), isWeighted()); }
 
-  bool hasExactColour() const { return !colourSums.empty(); }
+  bool hasExactColour() const { return !colourSums().empty(); }
   bool isWeighted() const { return unitsPerBeam != 1; }
   bool sameShape(const SpectralHistogram& o) const {
     return o.pixelsX == pixelsX && o.pixelsY == pixelsY && o.bins == bins && o.channelSet() == channelSet() &&
            o.unitsPerBeam == unitsPerBeam;
   }
 
-  uint64_t& at(uint32_t pixel, uint32_t bin) { return counts[size_t(pixel) * bins + bin]; }
-  uint64_t at(uint32_t pixel, uint32_t bin) const { return counts[size_t(pixel) * bins + bin]; }
+  uint64_t& at(uint32_t pixel, uint32_t bin) { return counts()[size_t(pixel) * bins + bin]; }
+  uint64_t at(uint32_t pixel, uint32_t bin) const { return counts()[size_t(pixel) * bins + bin]; }
   uint64_t total() const {
     uint64_t sum = 0;
-    for (uint64_t c : counts) sum += c;
+    for (uint64_t c : counts()) sum += c;
     return sum;
   }
   // Adds another histogram of the same shape (a render over other beams).

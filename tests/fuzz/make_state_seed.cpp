@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   f.weightUnits = 16;
   state.ranges = {{0, 10}, {20, 5}};
   state.histogram = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
-  for (size_t i = 0; i < state.histogram.counts.size(); ++i) state.histogram.counts[i] = i * 7;
+  for (size_t i = 0; i < state.histogram.counts().size(); ++i) state.histogram.counts()[i] = i * 7;
   const std::filesystem::path full = std::string(argv[1]) + ".full";
   writeFilmState(full, state);
   std::ifstream in(full, std::ios::binary);
