@@ -337,25 +337,32 @@ TEST_F(ObjectTest, MissingObjIsNamedWithTheField) {
 }
 
 TEST_F(ObjectTest, ObjParseErrorsAreTinyobjloadersMessage) {
-  expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
-                  {"cannot parse \"bad.obj\": Failed parse `f' line", "line 4"});
+  // An `l` line is not checked before tinyobjloader reads the file.
+  expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 0 1\nf 1 2 3\n",
+                  {"cannot parse \"bad.obj\": Failed parse `l' line", "line 4"});
 }
 
 TEST_F(ObjectTest, MeshWithoutTrianglesIsRefused) {
   expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\n", {"\"bad.obj\" has no triangles"});
   expectMeshError("", {"\"bad.obj\" has no triangles"});
-  expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", {"\"bad.obj\" has a face with fewer than 3 vertices"});
+  expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
+                  {"\"bad.obj\" line 4, \"f 1 2\": face 1 has 2 corners; a face needs at least 3"});
 }
 
 TEST_F(ObjectTest, VertexIndexOutOfRange) {
   expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n",
-                  {"\"bad.obj\": face 2 refers to vertex 9, but the file has 3 vertices (1 to 3)"});
+                  {"\"bad.obj\" line 5, \"9\": face 2 refers to vertex 9, but the file has 3 vertices (1 to 3)"});
   expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n",
-                  {"\"bad.obj\": face 1 refers to vertex before the first, but the file has 3 vertices"});
+                  {"\"bad.obj\" line 4, \"-4\": face 1 refers to vertex before the first (4 back from the 3 vertices "
+                   "defined so far)"});
 }
 
 TEST_F(ObjectTest, NonFiniteAndOutOfWorldCoordinates) {
-  expectMeshError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", {"\"bad.obj\": vertex 2 is not finite ([inf, 0, 0])"});
+  expectMeshError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
+                  {"\"bad.obj\" line 2, \"1e999\": vertex 2 has a coordinate that is not finite"});
+  // 0 in OBJ syntax that tinyobjloader reads as 0 * inf.
+  expectMeshError("v 0 0 0\nv 0e999999999 0 0\nv 0 1 0\nf 1 2 3\n",
+                  {"\"bad.obj\": vertex 2 is not finite (", "nan, 0, 0])"});
   expectMeshError("v 0 0 0\nv 2e12 0 0\nv 0 1 0\nf 1 2 3\n",
                   {"\"bad.obj\": vertex 2 lies at [2000000000000, 0, 0]; world coordinates must be finite with "
                    "magnitude <= 1e+12 m"});

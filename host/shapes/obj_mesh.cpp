@@ -15,6 +15,7 @@
 
 #include "camera/world_limits.h"
 #include "json/input_file.h"
+#include "shapes/obj_text.h"
 
 namespace spectrace {
 
@@ -150,8 +151,11 @@ std::optional<size_t> findDegenerateTriangle(const std::vector<glm::dvec3>& vert
   return std::nullopt;
 }
 
-std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::path& path, const std::string& asWritten,
-                        const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
+namespace {
+
+// The file's bytes; a missing or unreadable file is c.fail(ptr, ...).
+std::string readObjFile(const jf::Source& c, const std::string& ptr, const fs::path& path,
+                        const std::string& asWritten) {
   const std::string quoted = jf::jsonQuoted(asWritten);
   // "No such file or directory" with where it was looked for, as for CSV
   // spectra; readInputFile's checks (a regular file, the size) follow.
@@ -167,15 +171,22 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
     c.fail(ptr, fmt::format("cannot read {}: {}{}", quoted, std::error_code(err, std::generic_category()).message(),
                             where));
   }
-  std::string text;
   try {
-    text = readInputFile(path, "OBJ file", kMaxObjFileBytes);
+    return readInputFile(path, "OBJ file", kMaxObjFileBytes);
   } catch (const InputFileError& e) {
     c.fail(ptr, fmt::format("cannot read {}: {}", quoted, e.reason));
   }
+}
 
+struct TinyObjMesh {
   tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> objShapes;
+  std::vector<tinyobj::shape_t> shapes;
+};
+
+// tinyobjloader's reading of `text`, which is emptied (the file's bytes,
+// up to 1 GiB, are not needed after).
+TinyObjMesh readWithTinyobj(const jf::Source& c, const std::string& ptr, std::string& text, const std::string& quoted) {
+  TinyObjMesh mesh;
   std::vector<tinyobj::material_t> materials;
   std::string warning, error;
   bool parsed = false;
@@ -185,32 +196,30 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
     // No material reader: "mtllib" lines are skipped (surfaces come from
     // the scene). Polygons stay whole: they are split below, where faces
     // keep the file's numbers.
-    parsed = tinyobj::LoadObj(&attrib, &objShapes, &materials, &warning, &error, &in, nullptr,
+    parsed = tinyobj::LoadObj(&mesh.attrib, &mesh.shapes, &materials, &warning, &error, &in, nullptr,
                               /*triangulate=*/false, /*default_vcols_fallback=*/false);
   }
   text = std::string();
   if (!parsed) c.fail(ptr, fmt::format("cannot parse {}: {}", quoted, trimmed(error)));
   if (warning.find("Degenerated face") != std::string::npos)
     c.fail(ptr, fmt::format("{} has a face with fewer than 3 vertices", quoted));
+  return mesh;
+}
 
-  const size_t vertexCount = attrib.vertices.size() / 3;
-  if (vertexCount > kMaxMeshVertices)
-    c.fail(ptr, fmt::format("{} has {} vertices; a mesh has at most {}", quoted, vertexCount, kMaxMeshVertices));
-  uint64_t triangleCount = 0;
-  for (const auto& s : objShapes)
-    for (unsigned corners : s.mesh.num_face_vertices) triangleCount += corners - 2;
-  if (triangleCount == 0) c.fail(ptr, fmt::format("{} has no triangles (no faces)", quoted));
-  if (triangleCount > maxTriangles)
-    c.fail(ptr, fmt::format("{} has {} triangles, more than the {} left of the {} a scene may hold", quoted,
-                            triangleCount, maxTriangles, kMaxSceneTriangles));
-
-  // Faces in file order (tinyobjloader's shapes are the file's o/g groups,
-  // in order), each polygon a fan from its first corner.
+struct FanTriangles {
   MeshTriangles triangles;
   std::vector<uint64_t> faceOf;  // each triangle's face number, from 1
-  triangles.reserve(triangleCount);
-  faceOf.reserve(triangleCount);
-  uint64_t face = 0;
+  uint64_t faces = 0;
+};
+
+// Faces in file order (tinyobjloader's shapes are the file's o/g groups, in
+// order), each polygon a fan from its first corner.
+FanTriangles fanTriangles(const jf::Source& c, const std::string& ptr, const std::vector<tinyobj::shape_t>& objShapes,
+                          size_t vertexCount, uint64_t triangleCount, const std::string& quoted) {
+  FanTriangles fan;
+  fan.triangles.reserve(triangleCount);
+  fan.faceOf.reserve(triangleCount);
+  uint64_t& face = fan.faces;
   for (const auto& s : objShapes) {
     size_t next = 0;
     for (unsigned corners : s.mesh.num_face_vertices) {
@@ -226,12 +235,53 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
       }
       next += corners;
       for (unsigned k = 1; k + 1 < corners; ++k) {
-        triangles.push_back({v[0], v[k], v[k + 1]});
-        faceOf.push_back(face);
+        fan.triangles.push_back({v[0], v[k], v[k + 1]});
+        fan.faceOf.push_back(face);
       }
     }
   }
+  return fan;
+}
 
+}  // namespace
+
+std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::path& path, const std::string& asWritten,
+                        const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
+  const std::string notClosed =
+      parseObjMesh(c, ptr, readObjFile(c, ptr, path, asWritten), asWritten, transform, maxTriangles, shape);
+  shape.meshFile = path;
+  return notClosed;
+}
+
+std::string parseObjMesh(const jf::Source& c, const std::string& ptr, std::string text, const std::string& asWritten,
+                         const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
+  const std::string quoted = jf::jsonQuoted(asWritten);
+  const ObjTextCheck check = checkObjText(text);
+  if (check.fault)
+    c.fail(ptr, fmt::format("{} line {}, {}: {}", quoted, check.fault->line, check.fault->token, check.fault->what));
+  TinyObjMesh mesh = readWithTinyobj(c, ptr, text, quoted);
+  tinyobj::attrib_t& attrib = mesh.attrib;
+  std::vector<tinyobj::shape_t>& objShapes = mesh.shapes;
+  const size_t vertexCount = attrib.vertices.size() / 3;
+  if (vertexCount > kMaxMeshVertices)
+    c.fail(ptr, fmt::format("{} has {} vertices; a mesh has at most {}", quoted, vertexCount, kMaxMeshVertices));
+  uint64_t triangleCount = 0;
+  for (const auto& s : objShapes)
+    for (unsigned corners : s.mesh.num_face_vertices) triangleCount += corners - 2;
+  if (triangleCount == 0) c.fail(ptr, fmt::format("{} has no triangles (no faces)", quoted));
+  if (triangleCount > maxTriangles)
+    c.fail(ptr, fmt::format("{} has {} triangles, more than the {} left of the {} a scene may hold", quoted,
+                            triangleCount, maxTriangles, kMaxSceneTriangles));
+
+  FanTriangles fan = fanTriangles(c, ptr, objShapes, vertexCount, triangleCount, quoted);
+  MeshTriangles& triangles = fan.triangles;
+  const std::vector<uint64_t>& faceOf = fan.faceOf;
+  // The text check numbered vertices and faces as tinyobjloader must have:
+  // if not, its index checks do not describe this mesh.
+  if (vertexCount != check.vertices || fan.faces != check.faces)
+    c.fail(ptr, fmt::format("{}: the readers disagree: tinyobjloader read {} vertices and {} faces, the text check "
+                            "counted {} and {}",
+                            quoted, vertexCount, fan.faces, check.vertices, check.faces));
   objShapes = {};
 
   std::vector<glm::dvec3> points(vertexCount);
@@ -266,7 +316,6 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
   std::string notClosed;
   if (auto fault = findEdgeFault(triangles))
     notClosed = describeEdgeFault(*fault, 1, [&](size_t k) { return fmt::format("face {}", faceOf[k]); });
-  shape.meshFile = path;
   shape.vertices = std::move(placed);
   shape.triangles = std::move(triangles);
   shape.closed = notClosed.empty();

@@ -44,16 +44,22 @@ bool mirrors(const MeshTransform& transform);
 // is `ptr`): its positions and faces, each polygon split into a fan from its
 // first corner (so polygons must be convex). shape.vertices are all the
 // file's positions in its order (vertex k is the file's vertex k + 1) placed
-// by `transform`; shape.triangles, and shape.closed. Every problem is
-// c.fail(ptr, ...), naming faces and vertices as the file numbers them: an
-// unreadable file, tinyobjloader's parse errors, no triangles, more than
-// `maxTriangles`, a vertex index out of range, a placed vertex that is not
-// finite or lies outside the world bounds, a triangle of zero area.
-// Returns "" when the mesh is closed, else why not (for a dielectric's
-// message).
+// by `transform`; shape.triangles, shape.closed and shape.meshFile. Every
+// problem is c.fail(ptr, ...), naming faces and vertices as the file numbers
+// them: an unreadable file, a refused token of a `v` or `f` line
+// (checkObjText, obj_text.h: the line and the token are named),
+// tinyobjloader's parse errors, no triangles, more than `maxTriangles`, a
+// placed vertex that is not finite or lies outside the world bounds, a
+// triangle of zero area. Returns "" when the mesh is closed, else why not
+// (for a dielectric's message).
 std::string loadObjMesh(const json_fields::Source& c, const std::string& ptr, const std::filesystem::path& path,
                         const std::string& asWritten, const MeshTransform& transform, uint64_t maxTriangles,
                         Shape& shape);
+// The same for the file's text, already read (shape.meshFile is left as it
+// is).
+std::string parseObjMesh(const json_fields::Source& c, const std::string& ptr, std::string text,
+                         const std::string& asWritten, const MeshTransform& transform, uint64_t maxTriangles,
+                         Shape& shape);
 
 using MeshTriangles = std::vector<std::array<uint32_t, 3>>;
 

@@ -1,0 +1,161 @@
+// The OBJ text checks of loadObjMesh: what tinyobjloader would quietly turn
+// into a different mesh (an index that wraps, nan read as 0, a number read
+// as its prefix) is refused, naming the file, the line and the token.
+#include "shapes/obj_mesh.h"
+
+#include <atomic>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "json/scene_error.h"
+
+namespace spectrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+class ObjMeshTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    static std::atomic<int> counter{0};
+    dir_ = fs::temp_directory_path() /
+           ("spectrace_obj_mesh_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir_);
+    source_.file = "scene.json";
+    source_.dir = dir_;
+    source_.raise = [](const std::string& message) { throw SceneError(message); };
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  // Loads `obj` as mesh.obj of /objects/3/file.
+  Shape load(const std::string& obj) {
+    std::ofstream(dir_ / "mesh.obj", std::ios::binary) << obj;
+    Shape shape;
+    loadObjMesh(source_, "/objects/3/file", dir_ / "mesh.obj", "mesh.obj", MeshTransform{}, 1000, shape);
+    return shape;
+  }
+  // The message of the SceneError that loading `obj` must end in.
+  std::string errorOf(const std::string& obj) {
+    try {
+      load(obj);
+    } catch (const SceneError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("scene.json: /objects/3/file: \"mesh.obj\" ", 0), 0u) << message;
+      return message;
+    }
+    ADD_FAILURE() << "accepted:\n" << obj;
+    return "";
+  }
+  void expectError(const std::string& obj, const std::string& phrase) {
+    SCOPED_TRACE(obj);
+    const std::string message = errorOf(obj);
+    EXPECT_NE(message.find(phrase), std::string::npos) << "missing '" << phrase << "' in: " << message;
+  }
+
+  fs::path dir_;
+  json_fields::Source source_;
+};
+
+TEST_F(ObjMeshTest, IndexBeyondIntIsOutOfRangeInsteadOfWrapping) {
+  // 2^32 + 3 would wrap to 3 in an int; 2^32 - 1 to -1, the last vertex.
+  expectError(kTriangle + "f 1 2 4294967299\n",
+              "line 4, \"4294967299\": face 1 refers to vertex 4294967299, but the file has 3 vertices (1 to 3)");
+  expectError(kTriangle + "f 1 2 3\nf 1 2 4294967295\n",
+              "line 5, \"4294967295\": face 2 refers to vertex 4294967295, but the file has 3 vertices (1 to 3)");
+  expectError(kTriangle + "f 1 2 123456789012345678901234567890\n",
+              "line 4, \"123456789012345678901234567890\": face 1 refers to a vertex beyond 2^64");
+}
+
+TEST_F(ObjMeshTest, RelativeIndexBeyondIntIsOutOfRangeInsteadOfWrapping) {
+  // -(2^32 + 1) would wrap to -1, the last vertex.
+  expectError(kTriangle + "f 1 2 -4294967297\n",
+              "line 4, \"-4294967297\": face 1 refers to vertex before the first (4294967297 back from the 3 "
+              "vertices defined so far)");
+  expectError(kTriangle + "f -1 -2 -4\n",
+              "line 4, \"-4\": face 1 refers to vertex before the first (4 back from the 3 vertices defined so far)");
+}
+
+TEST_F(ObjMeshTest, ZeroAndMalformedIndicesNameTheirToken) {
+  expectError(kTriangle + "f 1 2 0\n", "line 4, \"0\": face 1 refers to vertex 0; OBJ numbers them from 1");
+  expectError(kTriangle + "f 1 2 3x\n", "line 4, \"3x\": face 1 has a corner that is not v, v/vt, v//vn or v/vt/vn");
+  expectError(kTriangle + "f 1 2 3/\n", "line 4, \"3/\": face 1 has a corner that is not v, v/vt, v//vn or v/vt/vn");
+  expectError(kTriangle + "f 1 2 3/1/0\n", "line 4, \"3/1/0\": face 1 refers to normal 0; OBJ numbers them from 1");
+  expectError(kTriangle + "f 1 2\n", "line 4, \"f 1 2\": face 1 has 2 corners; a face needs at least 3");
+}
+
+TEST_F(ObjMeshTest, NanIsRefusedNotReadAsTheOrigin) {
+  expectError("v 0 0 0\nv nan 1 0\nv 1 0 0\nf 1 2 3\n",
+              "line 2, \"nan\": vertex 2 has a coordinate that is not finite (nan and inf are refused)");
+  expectError("v 0 0 0\nv 1 -NaN 0\nv 1 0 0\nf 1 2 3\n",
+              "line 2, \"-NaN\": vertex 2 has a coordinate that is not finite");
+}
+
+TEST_F(ObjMeshTest, InfIsNotFiniteRatherThanAZeroAreaFace) {
+  expectError("v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n",
+              "line 2, \"inf\": vertex 2 has a coordinate that is not finite (nan and inf are refused)");
+  expectError("v 0 0 0\nv 1 0 0\nv 0 -Infinity 0\nf 1 2 3\n",
+              "line 3, \"-Infinity\": vertex 3 has a coordinate that is not finite");
+  expectError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
+              "line 2, \"1e999\": vertex 2 has a coordinate that is not finite (beyond the range of a double)");
+}
+
+TEST_F(ObjMeshTest, NumberOutsideObjSyntaxIsRefusedNotReadAsItsPrefix) {
+  for (const char* token : {"1,5", "1.5.2", "0x10", "1e", "1e+", "--1", "+", ".", "1d0", "1_000", "e3"}) {
+    expectError("v 0 0 0\nv " + std::string(token) + " 1 0\nv 1 0 0\nf 1 2 3\n",
+                "line 2, \"" + std::string(token) +
+                    "\": vertex 2 has a coordinate that is not a number in OBJ syntax (a decimal such as -1.5 or "
+                    "2.5e-3)");
+  }
+}
+
+TEST_F(ObjMeshTest, VertexNeedsThreeToSixNumbers) {
+  expectError("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n",
+              "line 2, \"v 1 0\": vertex 2 has 2 numbers; a vertex is x y z, optionally followed by w or by r g b");
+  expectError("v 0 0 0\nv 1 0 0 1 1\nv 0 1 0\nf 1 2 3\n", "line 2, \"v 1 0 0 1 1\": vertex 2 has 5 numbers");
+}
+
+TEST_F(ObjMeshTest, LinesAreCountedAcrossLineEndingsAndComments) {
+  expectError("# a comment\r\nv 0 0 0\r\n\r\nv 1 0 0\rv 0 1 0\ng group\nf 1 2 x\n", "line 7, \"x\": face 1");
+  // A token that is not printable text is shown escaped, and a long one cut.
+  expectError(kTriangle + "f 1 2 \x01\xff\n", "line 4, \"\\x01\\xff\": face 1");
+  const std::string message = errorOf(kTriangle + "f 1 2 3" + std::string(1000, '9') + "\n");
+  EXPECT_NE(message.find("line 4, \"3" + std::string(39, '9') + "...\": face 1 refers to a vertex beyond 2^64"),
+            std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), 400u) << message;
+}
+
+TEST_F(ObjMeshTest, AcceptedFormsKeepWorking) {
+  const Shape s = load(
+      "v -1.5e+2 .5 5.\t# trailing comment\n"
+      "v +2 1E1 0.25 1\n"
+      "v 0 -0 1 0.5 0.5 0.5\r\n"
+      "vt 0 0\nvn 0 0 1\n"
+      "f 1/1/1 2//1 3/1\n"
+      "f -3 -1 -2\n");
+  ASSERT_EQ(s.vertices.size(), 3u);
+  EXPECT_EQ(s.vertices[0], glm::dvec3(-150.0, 0.5, 5.0));
+  EXPECT_EQ(s.vertices[1], glm::dvec3(2.0, 10.0, 0.25));
+  EXPECT_EQ(s.vertices[2], glm::dvec3(0.0, 0.0, 1.0));
+  ASSERT_EQ(s.triangles.size(), 2u);
+  EXPECT_EQ(s.triangles[0], (std::array<uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(s.triangles[1], (std::array<uint32_t, 3>{0, 2, 1}));
+}
+
+TEST_F(ObjMeshTest, ForwardReferencesAreCheckedAgainstTheWholeFile) {
+  EXPECT_EQ(load("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").triangles.size(), 1u);
+  expectError("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+              "line 5, \"4\": face 2 refers to vertex 4, but the file has 3 vertices (1 to 3)");
+}
+
+}  // namespace
+}  // namespace spectrace
