@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes spectrace's parsers of outside input with libFuzzer under ASan +
 # UBSan (docs/reliability.md, "Fuzzing"): scene JSON, SPD CSV, batch job
-# lines and render-state files.
+# lines, render-state files and OBJ meshes.
 #
 #   bash scripts/fuzz.sh [SECONDS]    # SECONDS per target, default 600
 #   bash scripts/fuzz.sh --build-only # install clang and build the targets only
@@ -20,7 +20,7 @@ build_only=false
 if [[ ${1:-} == --build-only ]]; then build_only=true; shift; fi
 seconds=${1:-600}
 parallel=${SPECTRACE_FUZZ_PARALLEL:-1}
-targets=(${SPECTRACE_FUZZ_TARGETS:-scene_json csv_spd job_lines film_state})
+targets=(${SPECTRACE_FUZZ_TARGETS:-scene_json csv_spd job_lines film_state obj_mesh})
 
 missing=()
 for p in clang libclang-rt-14-dev; do
@@ -44,6 +44,7 @@ seed_files() {  # the seed inputs of target $1, one path a line
     csv_spd) find scenes data/cie -name '*.csv' ;;
     job_lines) find scenes tests/data -name '*.jsonl' ;;
     film_state) echo "$work/generated/valid.state" ;;
+    obj_mesh) find scenes tests/data -name '*.obj' ;;
   esac
 }
 mkdir -p "$work/generated"
