@@ -131,11 +131,12 @@ void validateCamera(const Camera& camera, const SceneChecker& c) {
   checkPositive(c, "/camera/exposure_s", camera.exposureS);
 }
 
-// A unit's view of the checker: keys relative to the light, messages with
-// the light's name.
-class LightChecker final : public LightFieldCheck {
+// A unit's view of the checker: keys relative to its light or object
+// (`at`), messages with its name (`note`).
+template <class FieldCheck>
+class ScopedChecker : public FieldCheck {
  public:
-  LightChecker(const SceneChecker& c, std::string at, std::string note)
+  ScopedChecker(const SceneChecker& c, std::string at, std::string note)
       : c_(c), at_(std::move(at)), note_(std::move(note)) {}
   [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
     c_.fail(pointer(key), what, note_);
@@ -144,12 +145,14 @@ class LightChecker final : public LightFieldCheck {
   std::string got(const std::string& key, const glm::dvec3& fallback) const override {
     return c_.got(pointer(key), fallback);
   }
+  bool given(const std::string& key) const { return c_.given(pointer(key)) != nullptr; }
   std::string pointer(const std::string& key) const { return at_ + "/" + key; }
 
  private:
   const SceneChecker& c_;
   std::string at_, note_;
 };
+using LightChecker = ScopedChecker<LightFieldCheck>;
 
 // The file rule: the light's spectrum carries power, some of it inside the
 // simulated range.
@@ -181,26 +184,7 @@ void validateLight(const Light& light, size_t index, const Scene& scene, const S
   if (c.requireEmission) checkEmission(light, scene.spectrum, check);
 }
 
-// An object's view of the checker: keys relative to the object, messages
-// with its name.
-class ObjectChecker final : public ShapeFieldCheck {
- public:
-  ObjectChecker(const SceneChecker& c, std::string at, std::string note)
-      : c_(c), at_(std::move(at)), note_(std::move(note)) {}
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
-    c_.fail(pointer(key), what, note_);
-  }
-  std::string got(const std::string& key, double fallback) const override { return c_.got(pointer(key), fallback); }
-  std::string got(const std::string& key, const glm::dvec3& fallback) const override {
-    return c_.got(pointer(key), fallback);
-  }
-  bool given(const std::string& key) const { return c_.given(pointer(key)) != nullptr; }
-
- private:
-  std::string pointer(const std::string& key) const { return at_ + "/" + key; }
-  const SceneChecker& c_;
-  std::string at_, note_;
-};
+using ObjectChecker = ScopedChecker<ShapeFieldCheck>;
 
 // A material unit's view of the checker: keys relative to the object's
 // material.
