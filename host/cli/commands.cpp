@@ -59,6 +59,7 @@ void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   if (command.state) job.state = *command.state;
   if (command.resume) {
     job.resume = readFilmState(*command.resume);
+    job.resumeFile = *command.resume;
     if (!command.state) job.state = *command.resume;
   }
 }

@@ -116,12 +116,21 @@ namespace {
 // The state a resume starts from, checked against the job: throws
 // FilmStateError naming what differs.
 void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerprint& fingerprint) {
+  const std::string from = job.resumeFile.empty() ? "the state" : job.resumeFile.string();
+  const auto refuse = [&](const std::string& why) {
+    throw FilmStateError(fmt::format("cannot resume from {}: {}", from, why));
+  };
   if (std::string field = fingerprintDifference(state.fingerprint, fingerprint); !field.empty())
-    throw FilmStateError("the state does not belong to this render: it differs in " + field);
+    refuse("it belongs to another render: it differs in " + field);
   const uint64_t first = job.firstBeam;
-  if (state.ranges.size() != 1 || state.ranges[0].first != first || state.ranges[0].count > job.beamCount())
-    throw FilmStateError(fmt::format("the state's beams are not a start of this render's beams [{}, +{})", first,
-                                     job.beamCount()));
+  if (state.ranges.size() != 1)
+    refuse(fmt::format("it holds {} beam ranges (a merged state); a render goes on only from a state of its own "
+                       "first beams",
+                       state.ranges.size()));
+  if (state.ranges[0].first != first)
+    refuse(fmt::format("its beams start at beam {}, this render's at beam {}", state.ranges[0].first, first));
+  if (state.ranges[0].count > job.beamCount())
+    refuse(fmt::format("it holds {} beams, more than this render's {}", state.ranges[0].count, job.beamCount()));
 }
 
 }  // namespace

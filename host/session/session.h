@@ -43,6 +43,7 @@ struct RenderJob {
   // A state to go on from: it must be this job's (same fingerprint) and
   // cover beams [firstBeam, firstBeam + k); the render traces the rest.
   std::optional<FilmState> resume;
+  std::filesystem::path resumeFile;  // where `resume` was read from, for messages
   // Warnings (a checkpoint that could not be written); default: stderr.
   std::function<void(const std::string&)> warn;
 
