@@ -3,7 +3,7 @@
 #include "cli/cli_numbers.h"
 
 #include <algorithm>
-#include <cinttypes>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
@@ -43,13 +43,22 @@ std::optional<CpuCode> cpuCodeOption(const std::string& text) {
 // --state, --resume and --shard on a job (throws UsageError).
 void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   if (command.shard) {
+    // from_chars, not sscanf: sscanf saturates a number past 2^64 - 1
+    // instead of failing, which made a huge K an empty shard.
+    const std::string& text = *command.shard;
     uint64_t index = 0, count = 0;
-    char slash = 0;
-    char rest = 0;
-    if (std::sscanf(command.shard->c_str(), "%" SCNu64 "%c%" SCNu64 "%c", &index, &slash, &count, &rest) != 3 ||
-        slash != '/' || count == 0 || index >= count || command.shard->find('-') != std::string::npos) {
-      throw UsageError(fmt::format("--shard {}: give I/K with 0 <= I < K, e.g. 0/4", *command.shard));
+    const char* end = text.data() + text.size();
+    const auto first = std::from_chars(text.data(), end, index);
+    bool parsed = first.ec == std::errc() && first.ptr != end && *first.ptr == '/';
+    if (parsed) {
+      const auto second = std::from_chars(first.ptr + 1, end, count);
+      parsed = second.ec == std::errc() && second.ptr == end;
     }
+    if (!parsed || count == 0 || index >= count)
+      throw UsageError(fmt::format("--shard {}: give I/K with 0 <= I < K < 2^64, e.g. 0/4", text));
+    if (count > job.beamCount())
+      throw UsageError(fmt::format("--shard {}: {} shards of {} beams would leave shards with no beams", text, count,
+                                   job.beamCount()));
     const BeamRange range = shardRange(job.firstBeam, job.beamCount(), index, count);
     job.firstBeam = range.first;
     job.beams = range.count;
