@@ -1,5 +1,6 @@
-# Helpers of the CLI test scripts (cli_state.cmake, cli_mpi.cmake), included
-# by them; COMPARE is tools/exr_pixels_equal.
+# Helpers of the CLI test scripts (cli_state.cmake, cli_mpi.cmake,
+# outputs_never_inputs.cmake, resume_refusals.cmake), included by them;
+# COMPARE is tools/exr_pixels_equal.
 
 # Runs a command; fails the test with its output unless it exits 0.
 function(run)
@@ -14,5 +15,17 @@ function(expect_same a b)
   execute_process(COMMAND ${COMPARE} ${a} ${b} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${a} and ${b} differ: ${out}")
+  endif()
+endfunction()
+
+# Fails the test (naming the case `name`) unless the command exits 2 (bad
+# input) with output matching `regex`.
+function(expect_refused name regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "${name}: exit code ${rc}, expected 2:\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${regex}")
+    message(FATAL_ERROR "${name}: the message does not match '${regex}':\n${out}${err}")
   endif()
 endfunction()

@@ -3,31 +3,22 @@
 # a folder) is refused with exit code 2 before anything is traced, and every
 # input stays byte-identical.
 #   -DSPECTRACE=path  -DSCENE_DIR=scenes/  -DDIR=scratch folder
+include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}/folder")
 configure_file("${SCENE_DIR}/prism.json" "${DIR}/scene.json" COPYONLY)
 configure_file("${SCENE_DIR}/prism.obj" "${DIR}/prism.obj" COPYONLY)
 set(quick --device cpu --beams 1000 -q)
-execute_process(COMMAND "${SPECTRACE}" render "${DIR}/scene.json" ${quick} --no-png -o "${DIR}/in.exr"
-                        --state "${DIR}/in.state" RESULT_VARIABLE code)
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "the input state's render failed (${code})")
-endif()
+run("${SPECTRACE}" render "${DIR}/scene.json" ${quick} --no-png -o "${DIR}/in.exr" --state "${DIR}/in.state")
 file(WRITE "${DIR}/jobs.png" "{\"scene\": \"scene.json\", \"output\": \"jobs.exr\", \"beams\": 1000}\n")
 set(inputs scene.json prism.obj in.state in.exr jobs.png)
 foreach(input IN LISTS inputs)
   file(SHA256 "${DIR}/${input}" before_${input})
 endforeach()
 
-# case name | expected message | arguments (';'-separated)
+# Refused with exit 2 and the message, and every input unchanged.
 function(refused name regex)
-  execute_process(COMMAND "${SPECTRACE}" ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 2)
-    message(FATAL_ERROR "${name}: exit code ${code}, expected 2:\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${regex}")
-    message(FATAL_ERROR "${name}: the message does not match '${regex}':\n${out}${err}")
-  endif()
+  expect_refused("${name}" "${regex}" "${SPECTRACE}" ${ARGN})
   foreach(input IN LISTS inputs)
     file(SHA256 "${DIR}/${input}" after)
     if(NOT after STREQUAL before_${input})

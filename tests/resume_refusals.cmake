@@ -2,31 +2,19 @@
 # traced, naming the state file and the reason: another seed, a merged
 # state, another first beam, more beams than the render.
 #   -DSPECTRACE=path  -DSCENE=scene.json  -DDIR=scratch folder
+include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
 set(quick --device cpu -q --no-png)
 foreach(part 0 1)
-  execute_process(COMMAND "${SPECTRACE}" render "${SCENE}" ${quick} --beams 2000 --shard ${part}/2
-                          -o "${DIR}/part${part}.exr" --state "${DIR}/part${part}.state" RESULT_VARIABLE code)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "the shard ${part} render failed (${code})")
-  endif()
+  run("${SPECTRACE}" render "${SCENE}" ${quick} --beams 2000 --shard ${part}/2 -o "${DIR}/part${part}.exr"
+      --state "${DIR}/part${part}.state")
 endforeach()
-execute_process(COMMAND "${SPECTRACE}" merge "${DIR}/part0.state" "${DIR}/part1.state" -q --no-png
-                        -o "${DIR}/merged.exr" --state "${DIR}/merged.state" RESULT_VARIABLE code)
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "the merge failed (${code})")
-endif()
+run("${SPECTRACE}" merge "${DIR}/part0.state" "${DIR}/part1.state" -q --no-png -o "${DIR}/merged.exr"
+    --state "${DIR}/merged.state")
 
 function(refused name regex)
-  execute_process(COMMAND "${SPECTRACE}" render "${SCENE}" ${quick} -o "${DIR}/${name}.exr" ${ARGN}
-                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 2)
-    message(FATAL_ERROR "${name}: exit code ${code}, expected 2:\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${regex}")
-    message(FATAL_ERROR "${name}: the message does not match '${regex}':\n${out}${err}")
-  endif()
+  expect_refused("${name}" "${regex}" "${SPECTRACE}" render "${SCENE}" ${quick} -o "${DIR}/${name}.exr" ${ARGN})
 endfunction()
 
 set(part0 "${DIR}/part0.state")
