@@ -26,12 +26,12 @@ RenderImage blankImage(uint32_t pixelsX, uint32_t pixelsY, bool withError) {
   return image;
 }
 
-// One pixel's counters, wherever they live: its counts of bins
-// [firstBin, firstBin + bins) (the others are 0), its X, Y, Z colour sums
-// (or null) and its squared-weight sum.
+// One pixel's counters, wherever they live: its counts of the factors' bins
+// from firstBin (the others are 0), its X, Y, Z colour sums (or null) and
+// its squared-weight sum.
 struct PixelCounters {
   const uint64_t* counts;
-  uint32_t firstBin, bins;
+  uint32_t firstBin;
   const uint64_t* colourSums;
   uint64_t squaredWeights;
 };
@@ -61,13 +61,12 @@ inline glm::dvec3 resolveBinWeight(const HostPixel& pixel, uint bin) {
 #undef RESOLVE_PIXEL
 }  // namespace host_resolve
 
-// Pixel p of `image` from its counters, in double. Bins outside the given
-// range hold 0 and would add exactly +0.0, so skipping them changes nothing.
-void resolvePixel(const PixelCounters& pixel, size_t p, const ResolveParameters& parameters, uint64_t unitsPerBeam,
-                  RenderImage& image, FilmSummary* summary) {
+// What turns every pixel's `bins` counts into light, once per image.
+host_resolve::ResolveFactors factorsOf(const ResolveParameters& parameters, uint64_t unitsPerBeam, uint32_t bins,
+                                       bool hasExactColour) {
   host_resolve::ResolveFactors factors;
-  factors.bins = pixel.bins;
-  factors.exactColour = parameters.useExactColour && pixel.colourSums;
+  factors.bins = bins;
+  factors.exactColour = parameters.useExactColour && hasExactColour;
   factors.irradiancePerCount = parameters.irradiancePerCount;
   const double perBeam = parameters.irradiancePerCount * double(unitsPerBeam);
   factors.xyzPerColourUnit = 683.0 * perBeam / double(device::kColourFixedPointScale);
@@ -75,6 +74,14 @@ void resolvePixel(const PixelCounters& pixel, size_t p, const ResolveParameters&
   factors.xyzToRgbRow0 = glm::dvec3(m[0][0], m[1][0], m[2][0]);
   factors.xyzToRgbRow1 = glm::dvec3(m[0][1], m[1][1], m[2][1]);
   factors.xyzToRgbRow2 = glm::dvec3(m[0][2], m[1][2], m[2][2]);
+  return factors;
+}
+
+// Pixel p of `image` from its counters, in double. Bins outside the given
+// range hold 0 and would add exactly +0.0, so skipping them changes nothing.
+void resolvePixel(const PixelCounters& pixel, size_t p, const host_resolve::ResolveFactors& factors,
+                  const ResolveParameters& parameters, uint64_t unitsPerBeam, RenderImage& image,
+                  FilmSummary* summary) {
   const host_resolve::PixelResolution sums = host_resolve::resolvePixel(
       {pixel.counts, pixel.colourSums, parameters.binWeights.data() + pixel.firstBin}, factors);
   for (int k = 0; k < 3; ++k) {
@@ -95,11 +102,13 @@ RenderImage resolveOnCpu(const SpectralHistogram& histogram, const ResolveParame
   RenderImage image = blankImage(histogram.pixelsX, histogram.pixelsY, parameters.beams > 0);
   const size_t pixels = size_t(histogram.pixelsX) * histogram.pixelsY;
   if (summary) *summary = FilmSummary{histogram.countedBeams, 0};
+  const host_resolve::ResolveFactors factors =
+      factorsOf(parameters, histogram.unitsPerBeam, histogram.bins, histogram.hasExactColour());
   for (size_t p = 0; p < pixels; ++p) {
-    const PixelCounters counters{histogram.counts().data() + p * histogram.bins, 0, histogram.bins,
+    const PixelCounters counters{histogram.counts().data() + p * histogram.bins, 0,
                                  histogram.hasExactColour() ? histogram.colourSums().data() + p * 3 : nullptr,
                                  histogram.isWeighted() ? histogram.squaredWeightSums()[p] : 0};
-    resolvePixel(counters, p, parameters, histogram.unitsPerBeam, image, summary);
+    resolvePixel(counters, p, factors, parameters, histogram.unitsPerBeam, image, summary);
   }
   return image;
 }
@@ -112,11 +121,12 @@ RenderImage resolveStoredCountersOnCpu(std::span<const uint64_t> counters, const
   const uint32_t stride = film.countersPerPixel();
   const uint32_t colour = device::colourCounterOffset(film.storedBins);
   const uint32_t squared = device::squaredWeightCounterOffset(film.storedBins, film.exactColour);
+  const host_resolve::ResolveFactors factors = factorsOf(parameters, film.weightUnits, film.storedBins, film.exactColour);
   for (uint64_t stored = 0; stored < film.storedPixelCount(); ++stored) {
     const uint64_t* src = counters.data() + stored * stride;
-    const PixelCounters pixel{src, film.firstStoredBin, film.storedBins, film.exactColour ? src + colour : nullptr,
+    const PixelCounters pixel{src, film.firstStoredBin, film.exactColour ? src + colour : nullptr,
                               film.weighted() ? src[squared] : 0};
-    resolvePixel(pixel, film.fullPixelOfStored(stored), parameters, film.weightUnits, image, summary);
+    resolvePixel(pixel, film.fullPixelOfStored(stored), factors, parameters, film.weightUnits, image, summary);
   }
   return image;
 }
