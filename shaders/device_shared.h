@@ -135,16 +135,28 @@ END_BINDING();
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;
 
-// Weighted counts. An aimed beam carries weight ratio r in [0, 1] (its
-// emission density over its sampling density, divided by the light's largest
-// such ratio; the light-selection CDF carries the rest). A counted beam adds
-// round(r * weightUnits) to its bin, rounded stochastically (unbiased), and,
-// when weights vary, round(r^2 * weightUnits) to its pixel's squared-weight
-// counter (for the error estimate). weightUnits is 1 when every ratio is 1
-// (no aimed area light): counts are then plain hit counts. Otherwise it is
-// 2^24, so a uint64 counter holds 2^40 = 1.1e12 full-weight beams in one
-// pixel-bin, and the quantum is 6e-8 of a beam.
-SPECTRACE_CONSTANT uint kWeightUnitsFractional = 16777216u;  // 2^24
+// Weighted counts. An aimed beam carries weight ratio r (its emission
+// density over its sampling density, divided by the light's largest such
+// ratio; the light-selection CDF carries the rest), and a camera connection
+// its own (which grows as 1 / distance^2). When every ratio is 1 (no aimed
+// area light, no connections) a film counts plain hits: one unit per beam
+// in 64-bit counters. Otherwise the film is weighted, and each of its
+// counters is 128 bits (two 64-bit words, low first) in units of 2^-63 of
+// a full-weight beam: a counted beam adds r * 2^63 to its bin, exactly when
+// r >= 2^-39 (r * 2^63 is then an integer in float) and rounded
+// stochastically (unbiased) below. Rounding adds at most 1/4 unit^2 of
+// variance per count, under 1% of the count's own r^2 for any r > 5 * 2^-63
+// (5e-19), so no weight a scene of any size can give loses precision in
+// practice (a 64-bit counter in units of 2^-24 rounded a 25 um pinhole's
+// connections at 1 m, worth 0.004 units, to 0 or 1). A counter holds 2^65
+// full-weight beams; words add with carry, so the sum stays exact and
+// independent of order.
+SPECTRACE_CONSTANT uint64_t kWeightUnitsFractional = 9223372036854775808ul;  // 2^63
+// One weighted count or counter: x * 2^63 in two words.
+struct WideCount {
+  uint64_t low;
+  uint64_t high;
+};
 
 // Philox counter blocks: each gives four 32-bit words per beam. Light choice
 // has its own block, so single-light scenes draw two blocks, not three.
@@ -276,6 +288,10 @@ struct AliasColumn {
 // uint64 counter holds 2^42 = 4.4e12 hits in one pixel; the quantum, 2^-20
 // of a CMF unit, adds rounding noise far below the Monte Carlo noise.
 SPECTRACE_CONSTANT float kColourFixedPointScale = 1048576.0f;  // 2^20
+// A weighted film's colour sums are wide counters in its bins' units
+// (kWeightUnitsFractional per CMF unit times the weight ratio), exact as
+// its bins are.
+SPECTRACE_LAYOUT_FN float colourUnitsPerCmf(bool weighted) { return weighted ? 9.2233720e18f : kColourFixedPointScale; }
 
 // Scene-wide constants of the trace pass. Each stored pixel owns countersPerPixel
 // 64-bit counters (countersPerPixelOf, below).
@@ -303,7 +319,7 @@ struct TraceConstants {
   uint totalBins;           // bins of the full spectrum
   vec3 aimCentre;           // sphere holding every point a counted beam passes: the
   float aimRadius;          // camera model's entrance (metres)
-  uint weightUnits;         // 1 or kWeightUnitsFractional (see there)
+  uint weighted;            // 1: weighted counts in 128-bit counters (kWeightUnitsFractional)
   // The stored pixels: the rectangle of columns [windowX0, windowX0 +
   // windowWidth) and rows [windowY0, windowY0 + windowHeight) that beams can
   // reach (the whole sensor unless the host proves less); the histogram
@@ -324,36 +340,41 @@ struct TraceConstants {
 };
 
 // The film's channels, defined only here: each stored pixel owns
-// countersPerPixel 64-bit counters, the counters of each channel the film
-// stores in channel order. A film's channel set has bit c for channel c.
+// countersPerPixel 64-bit words, the counters of each channel the film
+// stores in channel order, each counter one word (plain hit counts) or two
+// (a weighted film: low word, high word; kWeightUnitsFractional). A film's
+// channel set has bit c for channel c, and kFilmWideCounters when weighted.
 // host/film (FilmLayout::channels, SpectralHistogram::channel) and the
 // kernel both read the layout from these.
 SPECTRACE_CONSTANT uint kFilmChannelBins = 0u;           // a count per stored bin (always stored)
 SPECTRACE_CONSTANT uint kFilmChannelColour = 1u;         // X, Y, Z sums of each beam's CMFs (exact colour)
-SPECTRACE_CONSTANT uint kFilmChannelSquaredWeight = 2u;  // the sum of squared weights (weightUnits > 1)
+SPECTRACE_CONSTANT uint kFilmChannelSquaredWeight = 2u;  // the sum of squared weights (weighted films)
 SPECTRACE_CONSTANT uint kFilmChannelCount = 3u;
+SPECTRACE_CONSTANT uint kFilmWideCounters = 0x80000000u;  // channel-set bit: two words per counter
 // Counters per pixel of channel `channel` of a film storing `bins` bins.
 SPECTRACE_LAYOUT_FN uint filmChannelCounters(uint channel, uint bins) {
   return channel == kFilmChannelBins ? bins : (channel == kFilmChannelColour ? 3u : 1u);
 }
 SPECTRACE_LAYOUT_FN bool filmStoresChannel(uint channelSet, uint channel) { return ((channelSet >> channel) & 1u) != 0u; }
-// The first counter of `channel` in a pixel's counters (for a channel not
+// 64-bit words per counter.
+SPECTRACE_LAYOUT_FN uint filmCounterWords(uint channelSet) { return (channelSet & kFilmWideCounters) != 0u ? 2u : 1u; }
+// The first word of `channel` in a pixel's words (for a channel not
 // stored: where it would go).
 SPECTRACE_LAYOUT_FN uint filmChannelOffset(uint channel, uint bins, uint channelSet) {
   uint offset = 0u;
   for (uint c = 0u; c < channel; ++c)
     if (filmStoresChannel(channelSet, c)) offset += filmChannelCounters(c, bins);
-  return offset;
+  return offset * filmCounterWords(channelSet);
 }
 SPECTRACE_LAYOUT_FN uint filmChannelSetOf(bool exactColour, bool weighted) {
   return (1u << kFilmChannelBins) | (exactColour ? 1u << kFilmChannelColour : 0u) |
-         (weighted ? 1u << kFilmChannelSquaredWeight : 0u);
+         (weighted ? (1u << kFilmChannelSquaredWeight) | kFilmWideCounters : 0u);
 }
 SPECTRACE_LAYOUT_FN uint countersPerPixelOf(uint bins, uint channelSet) {
   return filmChannelOffset(kFilmChannelCount, bins, channelSet);
 }
 // The kernel's two fixed offsets (bins come first, colour follows them).
-SPECTRACE_LAYOUT_FN uint colourCounterOffset(uint bins) { return bins; }
+SPECTRACE_LAYOUT_FN uint colourCounterOffset(uint bins, bool weighted) { return weighted ? 2u * bins : bins; }
 SPECTRACE_LAYOUT_FN uint squaredWeightCounterOffset(uint bins, bool exactColour) {
   return filmChannelOffset(kFilmChannelSquaredWeight, bins, filmChannelSetOf(exactColour, true));
 }
@@ -367,7 +388,7 @@ struct TraceStats {
 struct BeamRecord {
   uint pixel;   // kBeamMissed for a beam that was not counted
   uint bin;
-  uint units;   // what the beam adds to its bin (weightUnits x its weight ratio)
+  uint ratioBits;  // the float bits of its weight ratio (1.0 in a plain film)
   uint contributions;  // counts the beam made (camera connections add one each); pixel, bin
                        // and units are its last one's
 };
@@ -387,7 +408,8 @@ struct ResolveConstants {
   uint exactColour;          // 1: XYZ from the per-beam colour counters
   uint squaredWeightOffset;  // of the squared-weight counter in a pixel's; 0: none (never first)
   float irradiancePerCount;  // W/m^2 carried by one count (per bin)
-  float xyzPerColourUnit;    // 683 * (irradiance per full-weight beam) / kColourFixedPointScale
+  float xyzPerColourUnit;    // 683 * (irradiance per full-weight beam) / colourUnitsPerCmf
+  uint weighted;             // 1: two words per counter (kFilmWideCounters)
   vec3 xyzToRgbRow0;         // linear sRGB = rows . XYZ
   vec3 xyzToRgbRow1;
   vec3 xyzToRgbRow2;
@@ -400,9 +422,12 @@ struct ResolvedPixel {
   vec3 xyz;          // CIE XYZ, Y in lux
   float irradiance;  // W/m^2 over all bins
   uint padding0;
-  uint64_t totalCount;          // the sum of the pixel's bin counters
-  uint64_t squaredWeightCount;  // its squared-weight counter (0 unless weighted)
-  uint64_t largestCount;        // its largest bin counter
+  // The pixel's exact sums as counters (WideCount; high words 0 unless the
+  // film is weighted): the sum of its bin counters, its squared-weight
+  // counter (0 unless weighted) and its largest bin counter.
+  WideCount totalCount;
+  WideCount squaredWeightCount;
+  WideCount largestCount;
 };
 
 // Per-dispatch push constants of the resolve pass: a slice of pixels, so the
@@ -481,17 +506,18 @@ static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);
 static_assert(sizeof(TracePush) == 16);
-static_assert(sizeof(ResolveConstants) == 68);
-static_assert(sizeof(ResolvedPixel) == 56);
+static_assert(sizeof(ResolveConstants) == 72);
+static_assert(sizeof(ResolvedPixel) == 80);
 static_assert(offsetof(ResolvedPixel, totalCount) == 32);
 static_assert(sizeof(RngCheckPush) == 24);
 static_assert(sizeof(CeilingPush) == 56);
 static_assert(sizeof(ResolvePush) == 8);
 // The channels' names in state files and messages.
 inline constexpr const char* kFilmChannelNames[kFilmChannelCount] = {"counts", "colour_sums", "squared_weight_sums"};
-static_assert(colourCounterOffset(7) == filmChannelOffset(kFilmChannelColour, 7, filmChannelSetOf(true, false)),
+static_assert(colourCounterOffset(7, false) == filmChannelOffset(kFilmChannelColour, 7, filmChannelSetOf(true, false)) &&
+                  colourCounterOffset(7, true) == filmChannelOffset(kFilmChannelColour, 7, filmChannelSetOf(true, true)),
               "the kernel's colour offset is the channel list's");
-static_assert(countersPerPixelOf(7, filmChannelSetOf(true, true)) == 11 &&
+static_assert(countersPerPixelOf(7, filmChannelSetOf(true, true)) == 22 &&
               countersPerPixelOf(7, filmChannelSetOf(false, false)) == 7);
 }  // namespace spectrace::device
 

@@ -23,8 +23,8 @@
 #ifndef SPECTRACE_SINGLE_CHUNK
 #define SPECTRACE_SINGLE_CHUNK false  // the film may span several histogram chunks
 #endif
-#ifndef SPECTRACE_SQUARED_WEIGHTS
-#define SPECTRACE_SQUARED_WEIGHTS (constants.weightUnits != 1u)
+#ifndef SPECTRACE_WEIGHTED
+#define SPECTRACE_WEIGHTED (constants.weighted != 0u)  // weighted counts (device_shared.h)
 #endif
 
 #ifndef SPECTRACE_OBJECTS

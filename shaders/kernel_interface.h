@@ -13,6 +13,9 @@
 //   uint readSceneWord(uint word)             the scene data (device_shared.h)
 //   void addCount(uint chunk, uint counter, uint64_t amount)
 //                                             adds to one film counter
+//   void addWideCount(uint chunk, uint counter, WideCount amount)
+//                                             adds to a two-word counter
+//                                             (words counter, counter + 1)
 // GLSL gets the prototypes below, so a missing function fails at the
 // shader's compile; C++ checks the same list with a concept.
 #ifndef SPECTRACE_KERNEL_INTERFACE_H
@@ -34,6 +37,7 @@ concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
   { k.readMaterial(i) } -> std::same_as<Material>;
   { k.readSceneWord(i) } -> std::same_as<uint32_t>;
   { k.addCount(i, i, amount) };
+  { k.addWideCount(i, i, WideCount{}) };
 };
 }  // namespace spectrace::device
 #else
@@ -47,6 +51,7 @@ BvhNode readBvhNode(uint node);
 Material readMaterial(uint material);
 uint readSceneWord(uint word);
 void addCount(uint chunk, uint counter, uint64_t amount);
+void addWideCount(uint chunk, uint counter, WideCount amount);
 #endif
 
 #endif  // SPECTRACE_KERNEL_INTERFACE_H

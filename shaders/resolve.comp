@@ -51,10 +51,21 @@ struct StoredPixel {
 #define RESOLVE_REAL float
 #define RESOLVE_VEC3 vec3
 #define RESOLVE_PIXEL StoredPixel
-uint64_t resolveBinCount(StoredPixel pixel, uint bin) { return readCount(pixel.chunk, pixel.base + bin); }
-uint64_t resolveColourSum(StoredPixel pixel, uint k) {
-  return readCount(pixel.chunk, pixel.base + colourCounterOffset(rc.bins) + k);
+// Counter `counter` of a pixel (of its first word, and the second in a
+// weighted film).
+WideCount readCounter(StoredPixel pixel, uint counter) {
+  WideCount w;
+  if (rc.weighted != 0u) {
+    w.low = readCount(pixel.chunk, pixel.base + 2u * counter);
+    w.high = readCount(pixel.chunk, pixel.base + 2u * counter + 1u);
+  } else {
+    w.low = readCount(pixel.chunk, pixel.base + counter);
+    w.high = 0ul;
+  }
+  return w;
 }
+WideCount resolveBinCount(StoredPixel pixel, uint bin) { return readCounter(pixel, bin); }
+WideCount resolveColourSum(StoredPixel pixel, uint k) { return readCounter(pixel, rc.bins + k); }
 vec3 resolveBinWeight(StoredPixel pixel, uint bin) { return binWeights[bin]; }
 #include "resolve_pixel.h"
 
@@ -80,8 +91,12 @@ void main() {
   result.irradiance = sums.irradiance;
   result.padding0 = 0u;
   result.totalCount = sums.total;
-  result.squaredWeightCount =
-      rc.squaredWeightOffset != 0u ? readCount(stored.chunk, stored.base + rc.squaredWeightOffset) : 0ul;
+  result.squaredWeightCount.low = 0ul;
+  result.squaredWeightCount.high = 0ul;
+  if (rc.squaredWeightOffset != 0u) {  // only weighted films: two words
+    result.squaredWeightCount.low = readCount(stored.chunk, stored.base + rc.squaredWeightOffset);
+    result.squaredWeightCount.high = readCount(stored.chunk, stored.base + rc.squaredWeightOffset + 1u);
+  }
   result.largestCount = sums.largest;
   resolved[slot] = result;
 }

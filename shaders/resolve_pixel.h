@@ -7,8 +7,9 @@
 // The includer defines, before including this file:
 //   RESOLVE_REAL, RESOLVE_VEC3   the arithmetic (float, vec3 / double, dvec3)
 //   RESOLVE_PIXEL                what names one pixel's counters
-//   uint64_t resolveBinCount(RESOLVE_PIXEL pixel, uint bin)   stored bin `bin`
-//   uint64_t resolveColourSum(RESOLVE_PIXEL pixel, uint k)    exact colour's X, Y, Z sums
+//   WideCount resolveBinCount(RESOLVE_PIXEL pixel, uint bin)   stored bin `bin`
+//   WideCount resolveColourSum(RESOLVE_PIXEL pixel, uint k)    exact colour's X, Y, Z sums
+// (a plain film's one-word counters with high words 0).
 //   RESOLVE_VEC3 resolveBinWeight(RESOLVE_PIXEL pixel, uint bin)
 //                                 683 x the bin-averaged CMFs of stored bin `bin`
 #ifndef SPECTRACE_RESOLVE_PIXEL_H
@@ -29,21 +30,35 @@ struct PixelResolution {
   RESOLVE_VEC3 xyz;
   RESOLVE_VEC3 rgb;
   RESOLVE_REAL irradiance;  // W/m^2 over all bins
-  uint64_t total;           // the sum of its bin counters (exact)
-  uint64_t largest;         // its largest bin counter
+  WideCount total;          // the sum of its bin counters (exact)
+  WideCount largest;        // its largest bin counter
 };
 
-FN void addBinCount(RESOLVE_PIXEL pixel, uint bin, INOUT(uint64_t) total, INOUT(uint64_t) largest,
+FN WideCount wideSum(WideCount a, WideCount b) {
+  WideCount sum;
+  sum.low = a.low + b.low;
+  sum.high = a.high + b.high + (sum.low < a.low ? uint64_t(1) : uint64_t(0));
+  return sum;
+}
+FN bool wideLess(WideCount a, WideCount b) { return a.high < b.high || (a.high == b.high && a.low < b.low); }
+// (With a high word of 0, as in a plain film, exactly RESOLVE_REAL(low).)
+FN RESOLVE_REAL realOfWide(WideCount w) {
+  return RESOLVE_REAL(w.high) * RESOLVE_REAL(18446744073709551616.0) + RESOLVE_REAL(w.low);
+}
+
+FN void addBinCount(RESOLVE_PIXEL pixel, uint bin, INOUT(WideCount) total, INOUT(WideCount) largest,
                     INOUT(RESOLVE_VEC3) weighted) {
-  uint64_t count = resolveBinCount(pixel, bin);
-  total += count;
-  largest = max(largest, count);
-  weighted += RESOLVE_REAL(count) * resolveBinWeight(pixel, bin);
+  WideCount count = resolveBinCount(pixel, bin);
+  total = wideSum(total, count);
+  if (wideLess(largest, count)) largest = count;
+  weighted += realOfWide(count) * resolveBinWeight(pixel, bin);
 }
 
 FN PixelResolution resolvePixel(RESOLVE_PIXEL pixel, ResolveFactors f) {
-  uint64_t total = uint64_t(0);
-  uint64_t largest = uint64_t(0);
+  WideCount total;
+  total.low = uint64_t(0);
+  total.high = uint64_t(0);
+  WideCount largest = total;
   RESOLVE_VEC3 weighted = RESOLVE_VEC3(0.0f);
   // llvmpipe (lavapipe) ends a shader loop after 65535 iterations in all
   // (nesting does not reset the count), which silently dropped the bins
@@ -64,12 +79,12 @@ FN PixelResolution resolvePixel(RESOLVE_PIXEL pixel, ResolveFactors f) {
   PixelResolution result;
   result.xyz = weighted * f.irradiancePerCount;
   if (f.exactColour)
-    result.xyz = RESOLVE_VEC3(RESOLVE_REAL(resolveColourSum(pixel, 0u)), RESOLVE_REAL(resolveColourSum(pixel, 1u)),
-                              RESOLVE_REAL(resolveColourSum(pixel, 2u))) *
+    result.xyz = RESOLVE_VEC3(realOfWide(resolveColourSum(pixel, 0u)), realOfWide(resolveColourSum(pixel, 1u)),
+                              realOfWide(resolveColourSum(pixel, 2u))) *
                  f.xyzPerColourUnit;
   result.rgb = RESOLVE_VEC3(dot(f.xyzToRgbRow0, result.xyz), dot(f.xyzToRgbRow1, result.xyz),
                             dot(f.xyzToRgbRow2, result.xyz));
-  result.irradiance = RESOLVE_REAL(total) * f.irradiancePerCount;
+  result.irradiance = realOfWide(total) * f.irradiancePerCount;
   result.total = total;
   result.largest = largest;
   return result;

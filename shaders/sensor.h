@@ -70,23 +70,33 @@ FN uint64_t colourFixedPoint(float value, float u) {
   return roundStochastic(scaled, u);
 }
 
-// What a counted beam of weight ratio `ratio` adds to its bin, and
-// ratio^2 in the same units to its pixel's squared-weight counter, in units
-// of 1 / weightUnits of a full-weight beam (device_shared.h). With
-// weightUnits == 1 every ratio is 1.
-FN uint64_t weightUnitsOf(float ratio, float u) {
-  PRECISE float scaled = ratio * float(constants.weightUnits);  // exact: a power of two
-  return constants.weightUnits == 1u ? 1ul : roundStochastic(scaled, u);
-}
-FN uint64_t squaredWeightUnitsOf(float ratio, float u) {
-  PRECISE float scaled = (ratio * ratio) * float(constants.weightUnits);
-  return roundStochastic(scaled, u);
+// A weighted count (device_shared.h, kWeightUnitsFractional): x * 2^63 in
+// two words, for x >= 0. Exact for x >= 2^-39, where the float x * 2^63 is
+// an integer: its high word is floor(x * 2^-64 * 2^63), and the rest is
+// exact in float (it has no more bits than x). Below, rounded
+// stochastically, where roundStochastic's floor and subtraction are exact.
+// x is clamped below 2^64 (full-weight beams in one count).
+FN WideCount wideFixedPoint(float x, float u) {
+  WideCount w;
+  PRECISE float scaled = min(x, 1.8e19f) * 9.2233720e18f;  // 2^63: exact
+  if (scaled < 16777216.0f) {
+    w.low = roundStochastic(scaled, u);
+    w.high = 0ul;
+    return w;
+  }
+  PRECISE float high = floor(scaled * 5.4210109e-20f);  // 2^-64: exact
+  PRECISE float low = scaled - high * 1.8446744e19f;    // 2^64
+  w.low = uint64_t(low);
+  w.high = uint64_t(high);
+  return w;
 }
 
 // Adds a beam that hit pixel `cell` (column, row of the sensor) in stored bin
 // `bin` to the film: its weight to the bin, its own CMF values (exact
-// colour) and its squared weight, through the includer's addCount, in the
-// layout of device_shared.h (countersPerPixelOf). Returns false for a pixel
+// colour) and, in a weighted film, its squared weight, through the
+// includer's addCount and addWideCount, in the layout of device_shared.h
+// (countersPerPixelOf). A plain film counts hits (every ratio is 1); a
+// weighted one adds wide counts (wideFixedPoint). Returns false for a pixel
 // outside the stored window, which the host proves unreachable (the tests
 // against the whole sensor would show a disproof); the guard keeps such a
 // beam in bounds.
@@ -99,18 +109,29 @@ FN bool countBeam(uvec2 cell, uint bin, float lambda, float ratio, float spareUn
     // One chunk (the usual case, and always on the CPU) needs no division.
     uint chunk = SPECTRACE_SINGLE_CHUNK ? 0u : stored / constants.pixelsPerChunk;
     uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
-    addCount(chunk, base + bin, weightUnitsOf(ratio, spareUniform));
     bool exactColour = SPECTRACE_EXACT_COLOUR;
+    bool weighted = SPECTRACE_WEIGHTED;
+    if (weighted) {
+      addWideCount(chunk, base + 2u * bin, wideFixedPoint(ratio, spareUniform));
+    } else {
+      addCount(chunk, base + bin, 1ul);
+    }
     if (exactColour) {
       PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
-      uint colour = base + colourCounterOffset(constants.bins);
-      addCount(chunk, colour, colourFixedPoint(cmf.x, spareUniform));
-      addCount(chunk, colour + 1u, colourFixedPoint(cmf.y, spareUniform));
-      addCount(chunk, colour + 2u, colourFixedPoint(cmf.z, spareUniform));
+      uint colour = base + colourCounterOffset(constants.bins, weighted);
+      if (weighted) {
+        addWideCount(chunk, colour, wideFixedPoint(cmf.x, spareUniform));
+        addWideCount(chunk, colour + 2u, wideFixedPoint(cmf.y, spareUniform));
+        addWideCount(chunk, colour + 4u, wideFixedPoint(cmf.z, spareUniform));
+      } else {
+        addCount(chunk, colour, colourFixedPoint(cmf.x, spareUniform));
+        addCount(chunk, colour + 1u, colourFixedPoint(cmf.y, spareUniform));
+        addCount(chunk, colour + 2u, colourFixedPoint(cmf.z, spareUniform));
+      }
     }
-    if (SPECTRACE_SQUARED_WEIGHTS)
-      addCount(chunk, base + squaredWeightCounterOffset(constants.bins, exactColour),
-               squaredWeightUnitsOf(ratio, spareUniform));
+    if (weighted)
+      addWideCount(chunk, base + squaredWeightCounterOffset(constants.bins, exactColour),
+                   wideFixedPoint(ratio * ratio, spareUniform));
   }
   return inside;
 }
@@ -125,12 +146,12 @@ FN uint storedBinOf(float lambda) {
 
 // What one beam put on the film: how many counts (a beam makes one at the
 // camera, and with camera connections one more per diffuse vertex), and its
-// last one's pixel, bin and units (record mode).
+// last one's pixel, bin and weight ratio (record mode).
 struct BeamTally {
   uvec2 cell;
   uint bin;
   uint contributions;
-  uint64_t units;
+  float ratio;
 };
 
 FN BeamTally emptyTally() {
@@ -138,7 +159,7 @@ FN BeamTally emptyTally() {
   tally.cell = uvec2(0u, 0u);
   tally.bin = 0u;
   tally.contributions = 0u;
-  tally.units = 0ul;
+  tally.ratio = 0.0f;
   return tally;
 }
 
@@ -148,7 +169,7 @@ FN void contribute(INOUT(BeamTally) tally, uvec2 cell, uint bin, float lambda, f
   // connections one beam may count twice in one pixel, whose cross term it
   // lacks, so the film's error estimate is then a lower bound.)
   bool counted = true;
-  if (SPECTRACE_RECORDING) tally.units = weightUnitsOf(ratio, spareUniform);
+  if (SPECTRACE_RECORDING) tally.ratio = ratio;
   else counted = countBeam(cell, bin, lambda, ratio, spareUniform);
   if (counted) {
     tally.cell = cell;

@@ -33,7 +33,7 @@ layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageF
 #define SPECTRACE_CAMERA_TYPE (cameraTypeMode == kCameraTypeAtRunTime ? constants.cameraType : cameraTypeMode)
 #define SPECTRACE_AIM (aimMode != 0u)
 #define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
-#define SPECTRACE_SQUARED_WEIGHTS ((aimMode != 0u || objectsMode != 0u) && constants.weightUnits != 1u)
+#define SPECTRACE_WEIGHTED ((aimMode != 0u || objectsMode != 0u) && constants.weighted != 0u)
 #define SPECTRACE_OBJECTS (objectsMode == 2u ? constants.objectPrimitives > 0u : objectsMode == 1u)
 #define SPECTRACE_RECORDING (recordBeams != 0u)
 #define SPECTRACE_SINGLE_CHUNK (histogramChunks == 1u)
@@ -127,21 +127,30 @@ uint readSceneWord(uint i) { return sceneData[i]; }
 // Constant indices only: no non-uniform descriptor indexing needed. With
 // one chunk there is no switch: on lavapipe each case of a divergent switch
 // costs a pass over the lanes.
-void addCount(uint chunk, uint index, uint64_t amount) {
-  if (histogramChunks == 1u) {
-    atomicAdd(histogram[0].counts[index], amount);
-    return;
-  }
+// Returns the word's value before the add.
+uint64_t addToWord(uint chunk, uint index, uint64_t amount) {
+  if (histogramChunks == 1u) return atomicAdd(histogram[0].counts[index], amount);
   switch (chunk) {
-    case 0u: atomicAdd(histogram[0].counts[index], amount); break;
-    case 1u: atomicAdd(histogram[1].counts[index], amount); break;
-    case 2u: atomicAdd(histogram[2].counts[index], amount); break;
-    case 3u: atomicAdd(histogram[3].counts[index], amount); break;
-    case 4u: atomicAdd(histogram[4].counts[index], amount); break;
-    case 5u: atomicAdd(histogram[5].counts[index], amount); break;
-    case 6u: atomicAdd(histogram[6].counts[index], amount); break;
-    default: atomicAdd(histogram[7].counts[index], amount); break;
+    case 0u: return atomicAdd(histogram[0].counts[index], amount);
+    case 1u: return atomicAdd(histogram[1].counts[index], amount);
+    case 2u: return atomicAdd(histogram[2].counts[index], amount);
+    case 3u: return atomicAdd(histogram[3].counts[index], amount);
+    case 4u: return atomicAdd(histogram[4].counts[index], amount);
+    case 5u: return atomicAdd(histogram[5].counts[index], amount);
+    case 6u: return atomicAdd(histogram[6].counts[index], amount);
+    default: return atomicAdd(histogram[7].counts[index], amount);
   }
+}
+void addCount(uint chunk, uint index, uint64_t amount) { addToWord(chunk, index, amount); }
+// The low word's carry, seen by exactly the add that wrapped it, goes to
+// the high word: the two words hold the exact sum in any order of adds.
+void addWideCount(uint chunk, uint index, WideCount amount) {
+  uint64_t carry = 0ul;
+  if (amount.low != 0ul) {
+    uint64_t before = addToWord(chunk, index, amount.low);
+    carry = before + amount.low < before ? 1ul : 0ul;
+  }
+  if (amount.high + carry != 0ul) addToWord(chunk, index + 1u, amount.high + carry);
 }
 
 #include "trace.h"
@@ -168,7 +177,7 @@ void main() {
     if (recordBeams != 0u) {
       BeamTally tally = emptyTally();
       bool hit = traceBeam(beamIndex, tally);
-      beamRecords[local] = hit ? BeamRecord(pixelOfCell(tally.cell, constants.pixelsX), tally.bin, uint(tally.units),
+      beamRecords[local] = hit ? BeamRecord(pixelOfCell(tally.cell, constants.pixelsX), tally.bin, floatBitsToUint(tally.ratio),
                                             tally.contributions)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
     } else if (traceAndCountOrProfileBeam(beamIndex) && countBeamsOnDevice != 0u) {

@@ -144,11 +144,11 @@ TEST(AimedSampling, MixedLightsKeepTheirSharesOfTheImage) {
 }
 
 TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
-  // A 550 nm line: every counted beam adds ybar(550) x ratio x 2^20 to Y and
-  // ratio x 2^24 to its bin, each rounded stochastically (variance <= 1/4
-  // unit^2 per beam), so over n counted beams the sums' ratio is
-  // ybar(550) / 16 to within 5 sigma of the rounding noise:
-  // 5 (sqrt(n) / 2) (1 / Y + 1 / B) relative.
+  // A 550 nm line: every counted beam adds ybar(550) x ratio x 2^63 to Y and
+  // ratio x 2^63 to its bin (a weighted film's units), each exact for
+  // ratios above 2^-39 but for the float product ybar x ratio, rounded to
+  // within 2^-24 relative. So the sums' ratio is ybar(550) to within
+  // 2^-24 relative, a bound, not a statistical tolerance.
   Scene scene = aimScene(LightType::Disk, true);
   scene.lights[0].spd = makeLineSpd(550.0);
   CompileOptions perBeamColour;
@@ -159,13 +159,13 @@ TEST(AimedSampling, ColourSumsCarryTheSameWeightsAsTheBins) {
   gpu.trace(0, 1'000'000);
   const SpectralHistogram h = gpu.download();
   double y = 0.0;
-  for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += double(h.colourSums()[p * 3 + 1]);
+  for (size_t p = 0; p < plan.film.pixelCount(); ++p) y += realOf(h.counter(device::kFilmChannelColour, p * 3 + 1));
   const double units = double(h.total());
   ASSERT_GT(h.countedBeams, 10'000u);
   const float ybar = device::BeamKernel(plan.device.constants, plan.device.lights, plan.device.intervals, plan.device.aliasColumns, plan.device.cmfTable).cmfAtWavelength(550.0f).y;
-  const double expected = double(ybar) * device::kColourFixedPointScale / device::kWeightUnitsFractional;
-  const double tolerance = 2.5 * std::sqrt(double(h.countedBeams)) * (1.0 / y + 1.0 / units);
-  std::printf("Y sum / bin sum = %.9f, ybar(550) / 16 = %.9f (tolerance %.2g relative)\n", y / units, expected, tolerance);
+  const double expected = double(ybar);
+  const double tolerance = 0x1p-24 + 1e-12;  // the float product's rounding, and the sums' in double
+  std::printf("Y sum / bin sum = %.9f, ybar(550) = %.9f (tolerance %.2g relative)\n", y / units, expected, tolerance);
   EXPECT_NEAR(y / units / expected, 1.0, tolerance);
 }
 

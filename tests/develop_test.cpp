@@ -27,8 +27,19 @@ namespace {
 
 Scene sceneNamed(const std::string& name) { return loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/" + name); }
 
-uint64_t largestBinCount(const SpectralHistogram& h) {
-  return h.counts().empty() ? 0 : *std::max_element(h.counts().begin(), h.counts().end());
+// The largest pixel-bin, in full-weight beams.
+double largestBinBeams(const SpectralHistogram& h) {
+  unsigned __int128 largest = 0;
+  for (size_t i = 0; i < h.counts().size() / h.counterWords(); ++i)
+    largest = std::max(largest, wideValue(h.counter(device::kFilmChannelBins, i)));
+  return realOf(device::WideCount{uint64_t(largest), uint64_t(largest >> 64)}) / double(h.unitsPerBeam);
+}
+
+// A pixel's bin counters, summed exactly.
+device::WideCount pixelTotal(const SpectralHistogram& h, uint32_t pixel) {
+  unsigned __int128 sum = 0;
+  for (uint32_t b = 0; b < h.bins; ++b) sum += wideValue(h.count(pixel, b));
+  return device::WideCount{uint64_t(sum), uint64_t(sum >> 64)};
 }
 
 void expectSameImage(const RenderImage& a, const RenderImage& b, const std::string& what) {
@@ -57,16 +68,16 @@ TEST_P(DevelopWithoutDownload, EqualsDevelopingTheDownloadedHistogram) {
   expectSameImage(cpuImage, reference, "CPU counters vs histogram");
   ASSERT_EQ(reference.irradianceError.size(), reference.irradiance.size());
   EXPECT_EQ(fromCounters.countedBeams, film.countedBeams);
-  EXPECT_EQ(fromCounters.largestCount, largestBinCount(film));
-  EXPECT_EQ(fromHistogram.largestCount, largestBinCount(film));
+  EXPECT_EQ(fromCounters.largestBeams, largestBinBeams(film));
+  EXPECT_EQ(fromHistogram.largestBeams, largestBinBeams(film));
+  EXPECT_EQ(fromCounters.squaredWeights, fromHistogram.squaredWeights);
 
   // The error channel is the estimate of pixel_variance.h, pixel by pixel.
   const std::vector<double> relativeVariance = estimatedRelativeVariance(film, kBeams);
   for (size_t p = 0; p < relativeVariance.size(); ++p) {
-    const auto first = film.counts().begin() + std::ptrdiff_t(p * film.bins);
-    const uint64_t total = std::accumulate(first, first + film.bins, uint64_t(0));
+    const double total = realOf(pixelTotal(film, uint32_t(p)));
     const float expected = std::isfinite(relativeVariance[p])
-                               ? float(std::sqrt(relativeVariance[p]) * (double(total) * parameters.irradiancePerCount))
+                               ? float(std::sqrt(relativeVariance[p]) * (total * parameters.irradiancePerCount))
                                : 0.0f;
     ASSERT_EQ(reference.irradianceError[p], expected) << "pixel " << p;
   }
@@ -79,7 +90,8 @@ TEST_P(DevelopWithoutDownload, EqualsDevelopingTheDownloadedHistogram) {
   // the error and the summary come from exact integer sums, so they match.
   EXPECT_EQ(gpuImage.irradianceError, reference.irradianceError) << "GPU error.E";
   EXPECT_EQ(fromGpu.countedBeams, film.countedBeams);
-  EXPECT_EQ(fromGpu.largestCount, largestBinCount(film));
+  EXPECT_EQ(fromGpu.largestBeams, largestBinBeams(film));
+  EXPECT_EQ(fromGpu.squaredWeights, fromHistogram.squaredWeights);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DevelopWithoutDownload,
@@ -108,7 +120,7 @@ TEST(DevelopWithoutDownload, RenderWithoutTheFilmGivesTheSameImage) {
     ASSERT_FALSE(withFilm.histogram.counts().empty());
     expectSameImage(withoutFilm.image, withFilm.image, "render without the film");
     EXPECT_EQ(withoutFilm.summary.countedBeams, withFilm.histogram.countedBeams);
-    EXPECT_EQ(withoutFilm.summary.largestCount, largestBinCount(withFilm.histogram));
+    EXPECT_EQ(withoutFilm.summary.largestBeams, largestBinBeams(withFilm.histogram));
   }
 }
 

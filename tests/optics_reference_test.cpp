@@ -807,11 +807,11 @@ void expectIdenticalRecords(bool connect, uint32_t count) {
     counted += a.pixel != device::kBeamMissed;
     several += a.contributions > 1;
     most = std::max(most, a.contributions);
-    if (a.pixel != b.pixel || a.bin != b.bin || a.units != b.units || a.contributions != b.contributions) {
+    if (a.pixel != b.pixel || a.bin != b.bin || a.ratioBits != b.ratioBits || a.contributions != b.contributions) {
       if (++differ <= 5)
         ADD_FAILURE() << (connect ? "connected" : "analog") << ": beam " << i << ": cpu (pixel " << a.pixel << ", bin "
-                      << a.bin << ", units " << a.units << ", contributions " << a.contributions << "), gpu (pixel "
-                      << b.pixel << ", bin " << b.bin << ", units " << b.units << ", contributions " << b.contributions
+                      << a.bin << ", ratio bits " << a.ratioBits << ", contributions " << a.contributions << "), gpu (pixel "
+                      << b.pixel << ", bin " << b.bin << ", ratio bits " << b.ratioBits << ", contributions " << b.contributions
                       << ")";
     }
   }

@@ -387,7 +387,7 @@ SpectralHistogram VulkanTracer::download() const {
     unpackDeviceCounters(counters, plan_.film, pixel, histogram);
     pixel += counters.size() / plan_.film.countersPerPixel();
   }
-  histogram.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : histogram.total();
+  histogram.countedBeams = countsBeamsOnDevice(plan_) ? countedBeamsOnDevice() : histogram.plainHits();
   return histogram;
 }
 
@@ -418,7 +418,8 @@ device::ResolveConstants resolveConstants(const CompiledScene& plan, const Resol
       plan.film.weighted() ? device::squaredWeightCounterOffset(plan.film.storedBins, plan.film.exactColour) : 0u;
   constants.irradiancePerCount = float(parameters.irradiancePerCount);
   const double perBeam = parameters.irradiancePerCount * double(plan.film.weightUnits);
-  constants.xyzPerColourUnit = float(683.0 * perBeam / device::kColourFixedPointScale);
+  constants.xyzPerColourUnit = float(683.0 * perBeam / double(device::colourUnitsPerCmf(plan.film.weighted())));
+  constants.weighted = plan.film.weighted() ? 1u : 0u;
   // glm is column-major: row r of M is (M[0][r], M[1][r], M[2][r]).
   const glm::dmat3& m = parameters.xyzToRgb;
   constants.xyzToRgbRow0 = glm::vec3(m[0][0], m[1][0], m[2][0]);
@@ -489,8 +490,8 @@ RenderImage VulkanTracer::develop(const ResolveParameters& parameters, FilmSumma
         image.irradianceError[p] = irradianceErrorOfPixel(slice[i].totalCount, slice[i].squaredWeightCount,
                                                           parameters.beams, plan_.film.weightUnits,
                                                           parameters.irradiancePerCount, p);
-      totalCount += slice[i].totalCount;
-      totals.largestCount = std::max(totals.largestCount, slice[i].largestCount);
+      totalCount += slice[i].totalCount.low;  // (read only for a plain film, whose counters are one word)
+      addToSummary(totals, slice[i].largestCount, slice[i].squaredWeightCount, plan_.film.weightUnits);
     }
   }
   developDeviceSeconds_ += deviceSeconds;

@@ -187,13 +187,19 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
       }
       std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,
                    result.wallSeconds, double(result.beamsTraced) / result.wallSeconds * 1e-6, result.deviceName.c_str());
-      const uint64_t largest = result.summary.largestCount;
       const uint64_t counted = result.summary.countedBeams;
-      std::fprintf(stderr, "spectrace: %llu beams counted (%.3g%% of those traced); the largest pixel-bin holds %llu %s\n",
+      // A beam counts once at the camera and, with connections, once more per bounce.
+      const auto& constants = result.plan.device.constants;
+      const uint64_t countsPerBeam = 1 + (constants.connect ? constants.maxBounces : 0);
+      const double countsBound = double(counted) * double(countsPerBeam);
+      std::fprintf(stderr,
+                   "spectrace: %llu beams counted (%.3g%% of those traced); the largest pixel-bin holds %.4g beams; "
+                   "rounding adds at most %.2g of the variance\n",
                    (unsigned long long)counted,
                    result.beamsTraced ? 100.0 * double(counted) / double(result.beamsTraced) : 0.0,
-                   (unsigned long long)largest,
-                   result.plan.film.weighted() ? "units of 2^-24 beam" : "beams");
+                   result.summary.largestBeams,
+                   roundingVarianceShare(result.summary, uint64_t(std::min(countsBound, 1.8e19)),
+                                         result.plan.film.weighted()));
       auto png = output;
       png.replace_extension(".png");
       std::fprintf(stderr, "spectrace: wrote %s%s\n", output.c_str(), command.png ? (" and " + png.string()).c_str() : "");

@@ -237,7 +237,7 @@ void filmConstants(const FilmLayout& film, device::TraceConstants& c) {
   c.binOffset = film.firstStoredBin;
   c.bins = film.storedBins;
   c.countersPerPixel = film.countersPerPixel();
-  c.weightUnits = film.weightUnits;
+  c.weighted = film.weighted() ? 1u : 0u;
   c.windowX0 = film.window.x0;
   c.windowY0 = film.window.y0;
   c.windowWidth = film.window.width;

@@ -94,17 +94,18 @@ TEST(AimedPlan, AreaLightsGetFractionalWeightsAndASquaredWeightCounter) {
   const CompiledScene plan = compileScene(scene, 1);
   EXPECT_EQ(plan.device.lights[0].aimed, 1u);
   EXPECT_TRUE(plan.film.weighted());
-  EXPECT_EQ(plan.device.constants.weightUnits, device::kWeightUnitsFractional);
-  EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 1u);  // colour from the bins
+  EXPECT_EQ(plan.device.constants.weighted, 1u);
+  // Colour from the bins; two words per counter (weighted).
+  EXPECT_EQ(plan.film.countersPerPixel(), 2u * (plan.film.storedBins + 1u));
   CompileOptions perBeam;
   perBeam.colourFromBins = false;
-  EXPECT_EQ(compileScene(scene, 1, perBeam).film.countersPerPixel(), plan.film.storedBins + 3u + 1u);
+  EXPECT_EQ(compileScene(scene, 1, perBeam).film.countersPerPixel(), 2u * (plan.film.storedBins + 3u + 1u));
   const double exact = 2.0 * oneMinusCos(0.0005);
   EXPECT_NEAR(plan.summaries[0].largestWeight / exact, 1.0, 2e-3);
   EXPECT_NEAR(double(plan.device.lights[0].aimWeightScale) * plan.summaries[0].largestWeight, 1.0, 1e-15);
   const SpectralHistogram h = plan.film.emptyHistogram();
   EXPECT_TRUE(h.isWeighted());
-  EXPECT_EQ(h.squaredWeightSums().size(), plan.film.pixelCount());
+  EXPECT_EQ(h.squaredWeightSums().size(), 2 * plan.film.pixelCount());
 }
 
 TEST(AimedPlan, NoAimIsTheAnalogPlan) {

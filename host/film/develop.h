@@ -35,8 +35,9 @@ struct ResolveParameters {
 // What develop reports about the film besides the image, from the pixels'
 // exact sums: no download of the film is needed for it.
 struct FilmSummary {
-  uint64_t countedBeams = 0;  // beams counted (each added to one bin)
-  uint64_t largestCount = 0;  // the largest pixel-bin counter (in counter units)
+  uint64_t countedBeams = 0;   // beams counted (each added to one bin)
+  double largestBeams = 0.0;   // the largest pixel-bin counter, in full-weight beams
+  double squaredWeights = 0.0; // the sum of every count's squared weight ratio (weighted films)
 };
 
 // Histogram -> image; `summary`, when given, gets the largest count and
@@ -54,8 +55,19 @@ RenderImage resolveStoredCountersOnCpu(std::span<const uint64_t> counters, const
 // sqrt(pixelRelativeVariance) x irradiance, the irradiance in double from
 // the pixel's total count; 0 for an empty pixel (no estimate) and for
 // beams == 0.
-float irradianceErrorOfPixel(uint64_t total, uint64_t squaredWeights, uint64_t beams, uint64_t unitsPerBeam,
-                             double irradiancePerCount, size_t pixel);
+float irradianceErrorOfPixel(device::WideCount total, device::WideCount squaredWeights, uint64_t beams,
+                             uint64_t unitsPerBeam, double irradiancePerCount, size_t pixel);
+// The largest share of the film's variance its fixed point can add. A plain
+// film counts hits exactly (0). A weighted film's count is exact when its
+// weight ratio is at least 2^-39, else rounded stochastically (unbiased),
+// adding at most 1/4 unit^2 = 2^-128 beams^2 of variance, against the
+// count's own r^2 (device_shared.h, kWeightUnitsFractional). With at most
+// `countsBound` counts: R / (R + S), R = countsBound x 2^-128, S = the
+// summary's sum of squared weights.
+double roundingVarianceShare(const FilmSummary& summary, uint64_t countsBound, bool weighted);
+// Adds one pixel's exact sums to the summary.
+void addToSummary(FilmSummary& summary, device::WideCount largest, device::WideCount squaredWeights,
+                  uint64_t unitsPerBeam);
 
 // Spectral irradiance in W m^-2 nm^-1 of every pixel and bin of the
 // histogram, [pixel][bin] like its counts: count x irradiancePerCount /

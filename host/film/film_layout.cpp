@@ -13,8 +13,9 @@ std::vector<StoredChannel> FilmLayout::channels() const {
   for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
     if (!device::filmStoresChannel(set, c)) continue;
     const bool spectral = c == device::kFilmChannelBins;
-    list.push_back({c, device::filmChannelOffset(c, storedBins, set), device::filmChannelCounters(c, storedBins),
-                    spectral ? firstStoredBin : 0, device::filmChannelCounters(c, bins)});
+    const uint32_t words = device::filmCounterWords(set);
+    list.push_back({c, device::filmChannelOffset(c, storedBins, set), device::filmChannelCounters(c, storedBins) * words,
+                    spectral ? firstStoredBin * words : 0, device::filmChannelCounters(c, bins) * words});
   }
   return list;
 }

@@ -16,9 +16,10 @@
 namespace spectrace {
 
 // Where one channel's counters of a pixel are, on the device and on the
-// host: a stored pixel's counters [deviceOffset, deviceOffset + counters)
-// are the host histogram's [hostFirst, hostFirst + counters) of the
-// pixel's hostCounters (the bins: a trimmed spectrum stores some of them).
+// host, in 64-bit words (filmCounterWords per counter): a stored pixel's
+// words [deviceOffset, deviceOffset + counters) are the host histogram's
+// [hostFirst, hostFirst + counters) of the pixel's hostCounters words (the
+// bins: a trimmed spectrum stores some of them).
 struct StoredChannel {
   uint32_t channel;  // device_shared.h, kFilmChannel*
   uint32_t deviceOffset, counters;
@@ -40,7 +41,7 @@ struct FilmLayout {
   uint32_t firstStoredBin = 0, storedBins = 0;
   bool exactColour = true;    // per-beam CMF sums per pixel
   bool colourFromBins = false;  // exact colour from bin counts instead (compile/shortcuts.h)
-  uint32_t weightUnits = 1;   // what a full-weight beam adds to its bin (1 or kWeightUnitsFractional)
+  uint64_t weightUnits = 1;   // what a full-weight beam adds to its bin (1 or kWeightUnitsFractional)
 
   bool weighted() const { return weightUnits != 1; }
   // The channels stored (bit c for channel c), and each with its place.

@@ -20,9 +20,11 @@ namespace {
 using nlohmann::json;
 
 constexpr char kMagic[8] = {'S', 'P', 'C', 'T', 'R', 'S', 'T', 'A'};
-// 2: the fingerprint's compile_options object; 1 (still read): four of the
-// options as fields of their own.
-constexpr uint32_t kVersion = 2;
+// 3: weighted films in two-word counters (kWeightUnitsFractional, 2^63);
+// 2: the fingerprint's compile_options object; 1: four of the options as
+// fields of their own. 1 and 2 are still read, except their weighted films
+// (2^24 units in one word), which are refused by name.
+constexpr uint32_t kVersion = 3;
 constexpr size_t kPrefixBytes = 16;  // magic, version, header length
 constexpr size_t kDigestBytes = 32;  // SHA-256
 
@@ -69,7 +71,7 @@ FilmFingerprint fingerprintFromJson(const json& j, uint32_t version) {
   f.storedBins = j.at("stored_bins").get<uint32_t>();
   f.exactColour = j.at("exact_colour").get<bool>();
   f.colourFromBins = j.value("colour_from_bins", false);
-  f.weightUnits = j.at("weight_units").get<uint32_t>();
+  f.weightUnits = j.at("weight_units").get<uint64_t>();
   f.seed = j.at("seed").get<uint64_t>();
   f.specialisation = j.at("specialisation").get<uint32_t>();
   if (version >= 2) {
@@ -212,6 +214,12 @@ FilmState readFilmState(const std::filesystem::path& file) {
                                       return true;
                                     });
     state.fingerprint = fingerprintFromJson(header.at("fingerprint"), prefix[0]);
+    if (const uint64_t units = state.fingerprint.weightUnits; units != 1 && units != device::kWeightUnitsFractional)
+      throw fail(fmt::format(
+          "/fingerprint/weight_units: {} {}", units,
+          prefix[0] < 3 ? "is a weighted film of an older spectrace (one-word counters), which this one cannot merge "
+                          "or resume: render it again"
+                        : fmt::format("is neither 1 nor {} (2^63)", device::kWeightUnitsFractional)));
     for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
     const FilmFingerprint& f = state.fingerprint;
     // The header's film shape sizes the arrays: checked against the bytes

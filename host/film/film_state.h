@@ -40,7 +40,7 @@ struct FilmFingerprint {
   uint32_t firstStoredBin = 0, storedBins = 0;
   bool exactColour = true;
   bool colourFromBins = false;  // exact colour developed from the bins (FilmLayout)
-  uint32_t weightUnits = 1;
+  uint64_t weightUnits = 1;
   uint64_t seed = 0;
   uint32_t specialisation = 0;  // SpecialisedFeature bits of the trace pipeline
   // Every option the scene was compiled with, by name

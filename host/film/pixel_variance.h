@@ -23,7 +23,7 @@ std::vector<double> estimatedRelativeVariance(const SpectralHistogram& histogram
 // The same for one pixel, from its exact sums: total counts C, the
 // squared-weight sum (weighted films only) and the units of a full-weight
 // beam; `pixel` only names it in the error.
-double pixelRelativeVariance(uint64_t total, uint64_t squaredWeights, uint64_t beams, uint64_t unitsPerBeam,
-                             size_t pixel);
+double pixelRelativeVariance(device::WideCount total, device::WideCount squaredWeights, uint64_t beams,
+                             uint64_t unitsPerBeam, size_t pixel);
 
 }  // namespace spectrace

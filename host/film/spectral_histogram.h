@@ -1,7 +1,9 @@
 #pragma once
-// Per-pixel spectral histogram: exact 64-bit counts, [pixel][bin], pixels
+// Per-pixel spectral histogram: exact integer counts, [pixel][bin], pixels
 // row-major from the top-left of the upright image. Integer counts make sums
 // order-independent and bit-reproducible, so partial renders merge exactly.
+// A plain film's counters are one 64-bit word; a weighted film's are two
+// (WideCount: low word, high word; device_shared.h).
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -17,18 +19,21 @@ inline const char* filmChannelName(uint32_t c) {
   return c < device::kFilmChannelCount ? device::kFilmChannelNames[c] : "?";
 }
 
+// A counter's exact value, and near it in double.
+inline unsigned __int128 wideValue(device::WideCount w) { return (unsigned __int128)w.high << 64 | w.low; }
+inline double realOf(device::WideCount w) { return double(w.high) * 0x1p64 + double(w.low); }
+
 struct SpectralHistogram {
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
   // What one full-weight beam adds to its bin: 1 (plain hit counts) or, when
-  // aimed beams carry fractional weights, kWeightUnitsFractional.
+  // beams carry fractional weights, kWeightUnitsFractional.
   uint64_t unitsPerBeam = 1;
   // Each channel's counters (device_shared.h, kFilmChannel*), pixel by
-  // pixel, filmChannelCounters of them each; empty when not held. Bins:
-  // [pixel][bin]. Exact colour: the sums of every counted beam's own
-  // x̄, ȳ, z̄ (times its weight ratio) in colour fixed point
-  // (kColourFixedPointScale units). Squared weights (fractional weights):
-  // the sum of squared weight ratios in the bins' units, for the error
-  // estimate.
+  // pixel, filmChannelCounters of them each, counterWords() words each;
+  // empty when not held. Bins: [pixel][bin]. Exact colour: the sums of
+  // every counted beam's own x̄, ȳ, z̄ (times its weight ratio) in
+  // colourUnitsPerCmf units. Squared weights (fractional weights): the sum
+  // of squared weight ratios in the bins' units, for the error estimate.
   std::array<std::vector<uint64_t>, device::kFilmChannelCount> channels;
   uint64_t countedBeams = 0;  // beams counted (each added to one bin)
 
@@ -37,7 +42,8 @@ struct SpectralHistogram {
       : pixelsX(px), pixelsY(py), bins(nbins), unitsPerBeam(units) {
     const uint32_t held = device::filmChannelSetOf(exactColour, units != 1);
     for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
-      if (device::filmStoresChannel(held, c)) channel(c).assign(size_t(px) * py * device::filmChannelCounters(c, nbins), 0);
+      if (device::filmStoresChannel(held, c))
+        channel(c).assign(size_t(px) * py * device::filmChannelCounters(c, nbins) * device::filmCounterWords(held), 0);
   }
 
   std::vector<uint64_t>& channel(uint32_t c) { return channels.at(c); }
@@ -58,9 +64,26 @@ struct SpectralHistogram {
            o.unitsPerBeam == unitsPerBeam;
   }
 
+  uint32_t counterWords() const { return isWeighted() ? 2 : 1; }
+  // Counter i of channel c (pixel by pixel, as the channel holds them).
+  device::WideCount counter(uint32_t c, size_t i) const {
+    const std::vector<uint64_t>& words = channel(c);
+    return isWeighted() ? device::WideCount{words[2 * i], words[2 * i + 1]} : device::WideCount{words[i], 0};
+  }
+  device::WideCount count(uint32_t pixel, uint32_t bin) const {
+    return counter(device::kFilmChannelBins, size_t(pixel) * bins + bin);
+  }
+  // A plain film's hit count (one word per counter).
   uint64_t& at(uint32_t pixel, uint32_t bin) { return counts()[size_t(pixel) * bins + bin]; }
   uint64_t at(uint32_t pixel, uint32_t bin) const { return counts()[size_t(pixel) * bins + bin]; }
-  uint64_t total() const {
+  // The sum of every bin counter, in counts (exact below 2^53).
+  double total() const {
+    double sum = 0;
+    for (size_t i = 0; i < counts().size() / counterWords(); ++i) sum += realOf(counter(device::kFilmChannelBins, i));
+    return sum;
+  }
+  // A plain film's hits: its bin counters' exact sum.
+  uint64_t plainHits() const {
     uint64_t sum = 0;
     for (uint64_t c : counts()) sum += c;
     return sum;
@@ -68,12 +91,22 @@ struct SpectralHistogram {
   // Adds another histogram of the same shape (a render over other beams).
   void merge(const SpectralHistogram& other) {
     if (!sameShape(other)) throw std::invalid_argument("cannot merge histograms of different shapes");
-    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {  // every channel merges by exact addition
-      std::vector<uint64_t>& mine = channel(c);
-      const std::vector<uint64_t>& theirs = other.channel(c);
-      for (size_t i = 0; i < mine.size(); ++i) mine[i] += theirs[i];
-    }
+    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)  // every channel merges by exact addition
+      addCounters(channel(c).data(), other.channel(c).data(), channel(c).size(), counterWords());
     countedBeams += other.countedBeams;
+  }
+  // `size` words of theirs added to mine, counter by counter, `words` words
+  // each (with the low word's carry).
+  static void addCounters(uint64_t* mine, const uint64_t* theirs, size_t size, uint32_t words) {
+    if (words == 1) {
+      for (size_t i = 0; i < size; ++i) mine[i] += theirs[i];
+      return;
+    }
+    for (size_t i = 0; i + 1 < size; i += 2) {
+      const uint64_t low = mine[i] + theirs[i];
+      mine[i + 1] += theirs[i + 1] + (low < mine[i] ? 1 : 0);
+      mine[i] = low;
+    }
   }
 };
 

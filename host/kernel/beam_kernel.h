@@ -32,24 +32,43 @@ class PendingCounts {
   // A beam with camera connections can make many counts: a full group is
   // added at once rather than overrun (its lines may not have arrived yet,
   // which costs time, never a count).
-  void push(uint32_t index, uint64_t amount) {
+  void push(uint32_t index, uint64_t amount) { pushWide(index, WideCount{amount, 0}, false); }
+  // A two-word counter (words index, index + 1) when `wide`.
+  void pushWide(uint32_t index, WideCount amount, bool wide = true) {
     if (size_ == kCapacity) [[unlikely]] flush();
     __builtin_prefetch(&counters_[index], 1);
     index_[size_] = index;
     amount_[size_] = amount;
+    wide_[size_] = wide;
     ++size_;
   }
   void flush() {
-    for (size_t i = 0; i < size_; ++i)
-      std::atomic_ref<uint64_t>(counters_[index_[i]]).fetch_add(amount_[i], std::memory_order_relaxed);
+    for (size_t i = 0; i < size_; ++i) {
+      if (wide_[i]) addWide(counters_, index_[i], amount_[i]);
+      else std::atomic_ref<uint64_t>(counters_[index_[i]]).fetch_add(amount_[i].low, std::memory_order_relaxed);
+    }
     size_ = 0;
+  }
+  // The kernel's addWideCount on the CPU (trace_beams.comp's twin): the
+  // low word's carry, seen by exactly the add that wrapped it, goes to the
+  // high word.
+  static void addWide(std::span<uint64_t> counters, uint32_t index, WideCount amount) {
+    uint64_t carry = 0;
+    if (amount.low != 0) {
+      const uint64_t before =
+          std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount.low, std::memory_order_relaxed);
+      carry = before + amount.low < before ? 1 : 0;
+    }
+    if (amount.high + carry != 0)
+      std::atomic_ref<uint64_t>(counters[index + 1]).fetch_add(amount.high + carry, std::memory_order_relaxed);
   }
 
  private:
   std::span<uint64_t> counters_;
   size_t size_ = 0;
   uint32_t index_[kCapacity];
-  uint64_t amount_[kCapacity];
+  WideCount amount_[kCapacity];
+  bool wide_[kCapacity];
 };
 
 // GLSL names (vec3, uvec4, sqrt, min, abs, ...) for the shared code.
@@ -77,7 +96,7 @@ class BeamKernel {
   }
 
   // Beam `index` in record mode: whether it would be counted, and its
-  // (last) count's pixel, stored bin and units (weightUnits x its weight
+  // (last) count's pixel, stored bin and weight ratio (its float bits),
   // ratio), with the number of counts it makes. Nothing is added to the
   // film. (The shared functions cannot be const-qualified, as GLSL has no
   // such thing; the kernel is small, so each thread uses its own copy.)
@@ -87,14 +106,14 @@ class BeamKernel {
     const bool hit = traceBeam(index, tally);
     recording = false;
     if (!hit) return BeamRecord{kBeamMissed, kBeamMissed, 0u, 0u};
-    return BeamRecord{pixelOfCell(tally.cell, constants.pixelsX), tally.bin, uint32_t(tally.units), tally.contributions};
+    return BeamRecord{pixelOfCell(tally.cell, constants.pixelsX), tally.bin, floatBitsToUint(tally.ratio),
+                      tally.contributions};
   }
   // The same, as pixel and bin.
-  bool trace(uint64_t index, uint& pixelOut, uint& binOut, uint64_t* unitsOut = nullptr) {
+  bool trace(uint64_t index, uint& pixelOut, uint& binOut) {
     const BeamRecord r = record(index);
     pixelOut = r.pixel;
     binOut = r.bin;
-    if (unitsOut) *unitsOut = r.units;
     return r.pixel != kBeamMissed;
   }
 
@@ -116,6 +135,10 @@ class BeamKernel {
   void addCount(uint /*chunk*/, uint index, uint64_t amount) const {
     if (pending) pending->push(index, amount);
     else std::atomic_ref<uint64_t>(counters[index]).fetch_add(amount, std::memory_order_relaxed);
+  }
+  void addWideCount(uint /*chunk*/, uint index, WideCount amount) const {
+    if (pending) pending->pushWide(index, amount);
+    else PendingCounts::addWide(counters, index, amount);
   }
   PendingCounts* pending = nullptr;
 

@@ -43,14 +43,34 @@ std::vector<uint64_t> World::gather(uint64_t value) const {
 
 namespace {
 
-// Sums `values` over the ranks into rank 0's, in pieces that fit MPI's int counts.
-void sumArrayOnRoot(std::vector<uint64_t>& values, bool root) {
-  constexpr size_t kPiece = size_t(1) << 26;  // 512 MiB of uint64
-  for (size_t start = 0; start < values.size(); start += kPiece) {
-    const int count = int(std::min(kPiece, values.size() - start));
-    uint64_t* data = values.data() + start;
-    if (root) MPI_Reduce(MPI_IN_PLACE, data, count, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
-    else MPI_Reduce(data, nullptr, count, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+// MPI's reduction over a weighted film's two-word counters (low, high):
+// MPI_SUM over the words would drop the low word's carry.
+void addWideCounters(void* in, void* inout, int* length, MPI_Datatype*) {
+  SpectralHistogram::addCounters(static_cast<uint64_t*>(inout), static_cast<const uint64_t*>(in), size_t(*length) * 2,
+                                 2);
+}
+
+// Sums `values` (counters of `words` words) over the ranks into rank 0's, in
+// pieces that fit MPI's int counts.
+void sumArrayOnRoot(std::vector<uint64_t>& values, uint32_t words, bool root) {
+  MPI_Datatype counter = MPI_UINT64_T;
+  MPI_Op sum = MPI_SUM;
+  if (words == 2) {
+    MPI_Type_contiguous(2, MPI_UINT64_T, &counter);
+    MPI_Type_commit(&counter);
+    MPI_Op_create(&addWideCounters, 1, &sum);
+  }
+  constexpr size_t kPiece = size_t(1) << 26;  // counters: 512 MiB of one-word ones
+  const size_t counters = values.size() / words;
+  for (size_t start = 0; start < counters; start += kPiece) {
+    const int count = int(std::min(kPiece, counters - start));
+    uint64_t* data = values.data() + start * words;
+    if (root) MPI_Reduce(MPI_IN_PLACE, data, count, counter, sum, 0, MPI_COMM_WORLD);
+    else MPI_Reduce(data, nullptr, count, counter, sum, 0, MPI_COMM_WORLD);
+  }
+  if (words == 2) {
+    MPI_Op_free(&sum);
+    MPI_Type_free(&counter);
   }
 }
 
@@ -66,9 +86,10 @@ void World::sumOnRoot(SpectralHistogram& film) const {
   MPI_Bcast(rootShape.data(), int(rootShape.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
   if (largestCode(shape == rootShape ? 0 : 1) != 0)
     throw std::runtime_error("the ranks' films differ in shape (was the scene file changed during the render?)");
-  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) sumArrayOnRoot(film.channel(c), isRoot());
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    sumArrayOnRoot(film.channel(c), film.counterWords(), isRoot());
   std::vector<uint64_t> counted{film.countedBeams};
-  sumArrayOnRoot(counted, isRoot());
+  sumArrayOnRoot(counted, 1, isRoot());
   film.countedBeams = counted[0];
 }
 

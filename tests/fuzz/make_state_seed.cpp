@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   f.pixelsY = 2;
   f.window = {0, 0, 3, 2};
   f.storedBins = 4;
-  f.weightUnits = 16;
+  f.weightUnits = spectrace::device::kWeightUnitsFractional;
   state.ranges = {{0, 10}, {20, 5}};
   state.histogram = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
   for (size_t i = 0; i < state.histogram.counts().size(); ++i) state.histogram.counts()[i] = i * 7;

@@ -19,7 +19,7 @@ struct BeamAgreement {
 };
 
 inline bool sameRecord(const device::BeamRecord& a, const device::BeamRecord& b) {
-  return a.pixel == b.pixel && a.bin == b.bin && a.units == b.units && a.contributions == b.contributions;
+  return a.pixel == b.pixel && a.bin == b.bin && a.ratioBits == b.ratioBits && a.contributions == b.contributions;
 }
 
 // The CPU's record of beam `index`, as the shader's record mode writes it.
@@ -40,9 +40,9 @@ inline BeamAgreement beamByBeam(const CompiledScene& plan, uint64_t firstBeam, u
     if (sameRecord(expected, records[i])) {
       ++result.same;
     } else if (++result.differ <= 5) {
-      std::printf("  %s: beam %llu differs: cpu (pixel %u, bin %u, units %u), gpu (pixel %u, bin %u, units %u)\n",
-                  name.c_str(), (unsigned long long)(firstBeam + i), expected.pixel, expected.bin, expected.units,
-                  records[i].pixel, records[i].bin, records[i].units);
+      std::printf("  %s: beam %llu differs: cpu (pixel %u, bin %u, ratio bits %08x), gpu (pixel %u, bin %u, ratio bits %08x)\n",
+                  name.c_str(), (unsigned long long)(firstBeam + i), expected.pixel, expected.bin, expected.ratioBits,
+                  records[i].pixel, records[i].bin, records[i].ratioBits);
     }
   }
   result.rate = double(result.same) / double(count);

@@ -36,16 +36,17 @@ inline PixelEstimates pixelEstimates(const SpectralHistogram& h, const CompiledS
   std::vector<double> counts(pixels, 0.0);
   double allCounts = 0.0, allSquares = 0.0;
   for (size_t p = 0; p < pixels; ++p) {
-    for (uint32_t b = 0; b < h.bins; ++b) counts[p] += double(h.counts()[p * h.bins + b]);
+    for (uint32_t b = 0; b < h.bins; ++b) counts[p] += realOf(h.count(uint32_t(p), b));
     allCounts += counts[p];
-    if (h.isWeighted()) allSquares += double(h.squaredWeightSums()[p]);
+    if (h.isWeighted()) allSquares += realOf(h.counter(device::kFilmChannelSquaredWeight, p));
   }
   const double globalShape = h.isWeighted() && allCounts > 0.0 ? units * allSquares / allCounts : 1.0;
   PixelEstimates out;
   out.countedBeams = h.countedBeams;
   for (size_t p = 0; p < pixels; ++p) {
     double shape = 1.0;
-    if (h.isWeighted()) shape = counts[p] > 0.0 ? units * double(h.squaredWeightSums()[p]) / counts[p] : globalShape;
+    if (h.isWeighted())
+      shape = counts[p] > 0.0 ? units * realOf(h.counter(device::kFilmChannelSquaredWeight, p)) / counts[p] : globalShape;
     out.irradiance.push_back(k * counts[p]);
     out.variancePerMean.push_back(k * shape);
     out.totalVariance += k * shape * k * counts[p];
