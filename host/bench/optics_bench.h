@@ -9,6 +9,10 @@
 //   relMSE = sum over pixels (A - B)^2 / 2  /  sum over pixels R^2,
 // with R a reference image of the same scene (one denominator for every
 // variant of a scene, so FOM ratios are ratios of squared error x time).
+// The two scenes matched with pbrt-v4 (scenes/bench/fom_emitter.json, a D65
+// Lambertian square seen through a 25 um pinhole, and fom_lit_grey.json,
+// a grey diffuse square lit by a spot) use Y instead of irradiance, over
+// the square's interior only, with R the mean of A and B.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -43,6 +47,8 @@ Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triang
 struct OpticsBenchOptions {
   std::filesystem::path scenesDir;  // holds prism.json and colorchecker.json
   const std::atomic<bool>* cancel = nullptr;
+  bool objects = true;  // the prism, ColorChecker and mesh rows
+  bool matched = true;  // the scenes matched with pbrt-v4 (scenes/bench/fom_*)
   std::function<void(const OpticsRow&)> onRow;
 };
 std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& options);

@@ -505,13 +505,16 @@ std::vector<AimRow> runAimStudy(const std::vector<DeviceSpec>& devices, const st
 }
 
 std::vector<OpticsRow> runOptics(const std::vector<DeviceSpec>& devices, const std::filesystem::path& scenesDir,
-                                 const std::atomic<bool>& cancel) {
-  fmt::print("\nOptics: scenes with objects (relMSE from two seeds)\n");
+                                 bool objects, bool matched, const std::atomic<bool>& cancel) {
+  fmt::print("\nOptics: scenes with objects{} (relMSE from two seeds)\n",
+             matched ? ", and the scenes matched with pbrt-v4 (fom_*: Y over the square's interior)" : "");
   fmt::print("{:<18} {:<12} {:<6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10}\n", "scene", "variant", "device", "primitives",
              "beams", "trace s", "Mbeam/s", "relMSE", "FOM");
   OpticsBenchOptions options;
   options.scenesDir = scenesDir;
   options.cancel = &cancel;
+  options.objects = objects;
+  options.matched = matched;
   options.onRow = [](const OpticsRow& r) {
     fmt::print("{:<18} {:<12} {:<6} {:>10} {:>10} {:>9.3f} {:>9.2f} {:>10.3g} {:>10.4g}\n", r.scene, r.variant,
                deviceKindName(r.device), r.primitives, r.beams, r.traceSeconds, r.beamsPerSecond() * 1e-6, r.relMse, r.fom);
@@ -535,14 +538,15 @@ void selectBenchSections(BenchCommand& command, const std::string& list) {
   const std::vector<std::pair<std::string, bool*>> sections = {
       {"throughput", &command.throughput}, {"specialisation", &command.specialisation}, {"aim", &command.aim},
       {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour},
-      {"profile", &command.profile},       {"ceiling", &command.ceiling},           {"optics", &command.optics}};
+      {"profile", &command.profile},       {"ceiling", &command.ceiling},           {"optics", &command.optics},
+      {"fom", &command.fom}};
   for (const auto& [name, flag] : sections) *flag = false;
   std::stringstream items(list);
   for (std::string item; std::getline(items, item, ',');) {
     const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == item; });
     if (it == sections.end())
       throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour, "
-                                   "profile, ceiling, optics)",
+                                   "profile, ceiling, optics, fom)",
                                    list, item));
     *it->second = true;
   }
@@ -566,7 +570,8 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
     report.trim = runTrim(report.devices, dir.parent_path(), cancel);
   }
   if (command.aim) report.aim = runAimStudy(report.devices, dir);
-  if (command.optics) report.optics = runOptics(report.devices, dir.parent_path(), cancel);
+  if (command.optics || command.fom)
+    report.optics = runOptics(report.devices, dir.parent_path(), command.optics, command.fom, cancel);
   if (command.batch) {
     const auto lampScene = dir.parent_path() / "batch" / "lamp.json";
     report.batchProcesses = runBatchProcesses(report.devices, lampScene, cancel);

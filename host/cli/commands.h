@@ -90,6 +90,7 @@ struct BenchCommand {
   bool pipelineCache = true;  // batch section: time to first beam, cold vs warm pipeline cache
   bool profile = true;        // the kernel's cost by stage (shaders/profile.h)
   bool ceiling = true;        // spectrace against the ceiling kernel (backend/ceiling.h)
+  bool fom = true;            // the scenes matched with pbrt-v4 (scenes/bench/fom_*): error per second
   uint64_t profileBeams = uint64_t(1) << 23;  // per stage and device, and per ceiling run
 };
 // --only: runs only the comma-separated sections (throughput, specialisation,

@@ -133,13 +133,14 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("!--no-specialisation", bench.specialisation, "Skip the specialised-pipeline comparison");
   benchCmd->add_flag("!--no-aim-study", bench.aim, "Skip the aimed-vs-analog comparison");
   benchCmd->add_flag("!--no-optics", bench.optics, "Skip the optics section (scenes with objects)");
+  benchCmd->add_flag("!--no-fom", bench.fom, "Skip the error-per-second section (the scenes matched with pbrt-v4)");
   benchCmd->add_flag("!--no-pipeline-cache-study", bench.pipelineCache, "Skip the cold-vs-warm pipeline cache timing");
   benchCmd->add_flag("!--no-batch", bench.batch, "Skip the batch section (batch against processes, large jobs, pipeline cache)");
   benchCmd->add_option_function<std::string>(
       "--only",
       [&](const std::string& list) { selectBenchSections(bench, list); },
       "Run only these sections (comma-separated): throughput, specialisation, aim, batch, sweep, colour, profile, "
-      "ceiling, optics");
+      "ceiling, optics, fom");
   benchCmd->add_option_function<std::string>(
       "--profile-beams", [&](const std::string& v) { bench.profileBeams = parseU64("--profile-beams", v, 1); },
       "Beams per stage and device in the profile and ceiling sections");
