@@ -59,6 +59,15 @@ TEST(SpectralFilm, ChannelNameFollowsTheLayout) {
   EXPECT_EQ(spectralChannelName(1000.0 / 3.0), "S0.333,333333nm");
 }
 
+TEST(SpectralFilm, ChannelClashNamesTheFirstTwoBinsThatShareAName) {
+  EXPECT_FALSE(spectralChannelClash({550.0, 550.000001, 550.000002}).has_value());
+  const auto clash = spectralChannelClash({550.00000025, 550.00000075, 550.00000125, 550.00000175});
+  ASSERT_TRUE(clash.has_value());
+  EXPECT_EQ(clash->first, 1u);
+  EXPECT_EQ(clash->second, 2u);
+  EXPECT_EQ(clash->name, "S0.550,000001nm");
+}
+
 TEST(SpectralFilm, ChannelsAndAttributesReadBackThroughOpenExr) {
   const Scene scene = laserScene();
   const RenderResult result = renderSpectral(scene, true);

@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <set>
+#include <map>
 #include <string>
 #include <thread>
 #include <utility>
@@ -104,6 +104,16 @@ std::string spectralChannelName(double wavelengthNm) {
   return name;
 }
 
+std::optional<SpectralChannelClash> spectralChannelClash(const std::vector<double>& centresNm) {
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t b = 0; b < centresNm.size(); ++b) {
+    std::string name = spectralChannelName(centresNm[b]);
+    const auto [it, added] = seen.emplace(name, b);
+    if (!added) return SpectralChannelClash{it->second, b, std::move(name)};
+  }
+  return std::nullopt;
+}
+
 void writeExr(const std::filesystem::path& path, const RenderImage& image, const ImageMetadata& meta) {
   const auto writeError = [&](const std::string& why) {
     return ImageIoError("cannot write EXR " + path.string() + ": " + why);
@@ -130,13 +140,12 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
   if (bins > 0 || !image.spectralIrradiance.empty()) {
     if (bins == 0) throw writeError("spectralIrradiance is given without spectralBinCentresNm");
     checkSize("spectralIrradiance", image.spectralIrradiance.size(), bins);
-    std::set<std::string> distinct;
     for (const double nm : image.spectralBinCentresNm) {
       if (!(nm > 0.0)) throw writeError("spectral bin centre " + std::to_string(nm) + " nm is not positive");
       spectralNames.push_back(spectralChannelName(nm));
-      if (!distinct.insert(spectralNames.back()).second)
-        throw writeError("two spectral bins share the channel name " + spectralNames.back());
     }
+    if (const auto clash = spectralChannelClash(image.spectralBinCentresNm))
+      throw writeError("two spectral bins share the channel name " + clash->name);
   }
 
   try {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,6 +49,14 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
 // "S0.552,500000nm" for 552.5: the layout's name of an emissive (Stokes 0)
 // channel at that wavelength, a comma as decimal separator, 6 decimals.
 std::string spectralChannelName(double wavelengthNm);
+// Two bins whose centres give one channel name: with 6 decimals, bins about
+// 1e-6 nm apart do. A file cannot hold both, so writers check before tracing.
+struct SpectralChannelClash {
+  std::size_t first = 0, second = 0;  // bin indices, first < second
+  std::string name;
+};
+// The clash of the lowest second bin, or none when every name is distinct.
+std::optional<SpectralChannelClash> spectralChannelClash(const std::vector<double>& centresNm);
 struct ExrContents {
   RenderImage image;
   ImageMetadata meta;

@@ -1,6 +1,8 @@
 #include "session/session.h"
 
 #include "compile/compile_scene.h"
+#include "film/develop.h"
+#include "json/scene_error.h"
 #include "session/output_guard.h"
 
 #include <chrono>
@@ -135,7 +137,27 @@ void checkResume(const RenderJob& job, const FilmState& state, const FilmFingerp
 
 }  // namespace
 
+namespace {
+
+// Spectral channel names keep 6 decimals of the bin centre, so bins about
+// 1e-6 nm apart would share a name the EXR cannot hold twice: refused here,
+// before tracing, not when the finished image is written.
+void checkSpectralChannels(const Scene& scene) {
+  const SpectrumRange& s = scene.spectrum;
+  const std::vector<double> centres = binCentresNm(s.minNm, s.maxNm, uint32_t(s.bins));
+  const auto clash = spectralChannelClash(centres);
+  if (!clash) return;
+  throw SceneError(fmt::format(
+      "{}: /spectrum/bins: bins {} and {} (centres {} and {} nm) would both be the spectral EXR channel {}, whose "
+      "name keeps 6 decimals of nm; use fewer bins or a wider range, or write no spectral channels",
+      scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string(), clash->first, clash->second,
+      centres[clash->first], centres[clash->second], clash->name));
+}
+
+}  // namespace
+
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs) {
+  if (job.outputs.spectral || job.scene.outputSpectral) checkSpectralChannels(job.scene);
   std::vector<std::filesystem::path> all;
   for (const auto& input : inputs) {
     std::error_code ec;
@@ -395,6 +417,7 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
     throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
                                      f.sceneFile, job.scene.sourceSha256, f.sceneSha256));
   job.output = output;
+  job.outputs.spectral = spectral;
   checkOutputPath(job);  // the scene and its CSV spectra are inputs too
   job.seed = f.seed;
   job.beams = state.beams();

@@ -86,7 +86,9 @@ std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png
                                       const std::filesystem::path& state);
 // checkOutputFiles for the job's outputs; the scene file, its CSV spectra,
 // its OBJ meshes and any of `inputs` are inputs (a state the job resumes
-// from may be its own --state, which it replaces).
+// from may be its own --state, which it replaces). With spectral channels
+// (the job's or the scene's), also that no two bins share a channel name
+// (SceneError naming /spectrum/bins and the two bins).
 void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::path>& inputs = {});
 
 class Session {
