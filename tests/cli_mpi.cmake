@@ -2,7 +2,8 @@
 # render --mpi under mpirun with 2 and 3 ranks (3 does not divide the beams)
 # gives EXR pixels bit-identical to one process rendering all the beams on
 # the same device, and a state holding exactly those beams; bad input and a
-# failure on one rank end every rank with exit code 2 and 1, without a hang.
+# failure on one rank end every rank with exit code 2 and 1, without a hang;
+# ranks given different renders (scene, seed) are refused before tracing.
 file(REMOVE_RECURSE ${DIR})
 file(MAKE_DIRECTORY ${DIR})
 # OpenMPI: more ranks than cores (CI machines are small), root in CI
@@ -61,6 +62,46 @@ else()
             : -np 1 ${SPECTRACE} render ${DIR}/no_such_scene.json --beams ${beams} --device cpu --mpi -q
               -o ${DIR}/one_failed.exr)
 endif()
-if(EXISTS ${DIR}/one_failed.exr OR EXISTS ${DIR}/bad.exr)
+# Ranks given different renders (another scene, another seed) would have
+# their films summed into a wrong image: each rank compares its film's
+# fingerprint with rank 0's before tracing, and every rank exits 2, the rank
+# that differs naming itself and the field. Rank 0 is not quiet here, so
+# its "beams over" line would show that the ranks had started tracing.
+file(READ ${SCENE} text)
+string(REPLACE "\"power_w\": 1," "\"power_w\": 2," other "${text}")
+if(other STREQUAL text)
+  message(FATAL_ERROR "${SCENE} has no \"power_w\": 1, to change")
+endif()
+file(WRITE ${DIR}/other_scene.json "${other}")
+set(rank1 ${SPECTRACE} render --beams ${beams} --device ${DEVICE} --threads 1 -q --no-png --mpi -o ${DIR}/differ.exr)
+foreach(case "other_scene|scene_sha256: \"[0-9a-f]+\" against \"[0-9a-f]+\""
+             "seed|seed: 2 against 1")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 what)
+  list(GET case 1 field)
+  if(what STREQUAL "other_scene")
+    set(second ${rank1} ${DIR}/other_scene.json)
+    set(named "other_scene.json")
+  else()
+    set(second ${rank1} ${SCENE} --seed 2)
+    set(named "pinhole_rect.json")
+  endif()
+  execute_process(COMMAND ${mpirun} -np 1 ${SPECTRACE} render ${SCENE} --beams ${beams} --device ${DEVICE}
+                          --threads 1 --no-png --mpi -o ${DIR}/differ.exr : -np 1 ${second}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc STREQUAL "2")
+    message(FATAL_ERROR "${what}: expected exit code 2, got ${rc}\n${out}${err}")
+  endif()
+  set(regex "spectrace: error: rank 1 of 2: its render of [^\n]*${named} is not rank 0's render of [^\n]*pinhole_rect.json: they differ in ${field} \\(this rank's against rank 0's\\)")
+  string(REGEX MATCHALL "${regex}" hits "${err}")
+  list(LENGTH hits n)
+  if(NOT n EQUAL 1)
+    message(FATAL_ERROR "${what}: expected \"${regex}\" once, found it ${n} times:\n${err}")
+  endif()
+  if(err MATCHES "beams over")
+    message(FATAL_ERROR "${what}: the ranks started tracing before refusing:\n${err}")
+  endif()
+endforeach()
+if(EXISTS ${DIR}/one_failed.exr OR EXISTS ${DIR}/bad.exr OR EXISTS ${DIR}/differ.exr)
   message(FATAL_ERROR "a failed MPI render wrote an image")
 endif()

@@ -58,6 +58,28 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
     for (const RenderJob& job : jobs)
       if (job.beamCount() < uint64_t(world.size()))
         throw UsageError(fmt::format("--mpi: {} beams cannot be split over {} ranks", job.beamCount(), world.size()));
+  });
+  if (code != 0) return code;
+
+  // Every rank must trace the same render, or rank 0 would sum films of
+  // different scenes, spectra or seeds into a wrong image without a word:
+  // each rank compares its films' fingerprints and beams with rank 0's
+  // before any beam is traced, and all stop when one differs.
+  std::vector<CompiledScene> plans;
+  std::string identity;
+  if ((code = collectively(world, [&] {
+         plans = mpi::compileJobs(jobs);
+         identity = mpi::renderIdentity(jobs, plans);
+       })) != 0)
+    return code;
+  const std::string rootIdentity = world.rootText(identity);
+  code = collectively(world, [&] {
+    if (std::string why = mpi::renderDifference(identity, rootIdentity); !why.empty()) throw UsageError(why);
+  });
+  if (code != 0) return code;
+
+  // The device is opened once the ranks agree on what to trace.
+  code = collectively(world, [&] {
     PipelineCacheOptions cache = command.pipelineCache;
     cache.enabled = cache.enabled && root;  // the pipeline cache file is rank 0's too
     std::function<void(const std::string&)> log;
@@ -67,7 +89,8 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
   });
   if (code != 0) return code;
 
-  for (RenderJob& job : jobs) {
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    RenderJob& job = jobs[j];
     const auto start = std::chrono::steady_clock::now();
     const BeamRange mine = mpi::rankBeams(job, world.rank(), world.size());
     if (talk) {
@@ -79,7 +102,7 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
       };
     }
     RenderResult part;
-    if ((code = collectively(world, [&] { part = mpi::traceBeams(session->device(), job, mine); })) != 0) return code;
+    if ((code = collectively(world, [&] { part = mpi::traceBeams(session->device(), job, std::move(plans[j]), mine); })) != 0) return code;
 
     // What each rank finished (all of its range unless interrupted), and
     // the exact sum of their films on rank 0.

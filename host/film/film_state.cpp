@@ -251,6 +251,16 @@ FilmState readFilmState(const std::filesystem::path& file) {
   return state;
 }
 
+std::string fingerprintText(const FilmFingerprint& fingerprint) { return toJson(fingerprint).dump(); }
+
+FilmFingerprint fingerprintOfText(const std::string& text) {
+  try {
+    return fingerprintFromJson(json::parse(text), kVersion);
+  } catch (const json::exception& e) {
+    throw FilmStateError(fmt::format("not a film fingerprint: {}", e.what()));
+  }
+}
+
 std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprint& b) {
   const json fa = toJson(a), fb = toJson(b);
   for (auto it = fa.begin(); it != fa.end(); ++it) {

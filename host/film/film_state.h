@@ -68,6 +68,12 @@ void writeFilmState(const std::filesystem::path& file, const FilmState& state);
 // returns half a state. Throws FilmStateError naming the file.
 FilmState readFilmState(const std::filesystem::path& file);
 
+// The fingerprint as the JSON text of a state's header, and back (throws
+// FilmStateError): how processes that share no file compare their films
+// (render --mpi).
+std::string fingerprintText(const FilmFingerprint& fingerprint);
+FilmFingerprint fingerprintOfText(const std::string& text);
+
 // The first field in which two fingerprints differ, as "<field>: <a> against
 // <b>", or "" when they match (the scene file's path is not compared: its
 // SHA-256 is).

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
 
@@ -208,6 +209,21 @@ TEST(FilmState, ADifferentCompileOptionIsNamed) {
   b.fingerprint = fingerprintOf(FilmLayout{}, "s.json", "abc", "CIE1931_2", 1, 31, namedCompileOptions(analog));
   EXPECT_EQ(fingerprintDifference(a.fingerprint, b.fingerprint), "compile_options/connect: true against false");
   EXPECT_EQ(fingerprintDifference(a.fingerprint, a.fingerprint), "");
+}
+
+// The fingerprint as text (what render --mpi ranks exchange) comes back
+// equal, and a different one is still told apart.
+TEST(FilmState, FingerprintTextRoundTrips) {
+  const CompiledScene plan = compileScene(weightedScene(), 4);
+  const FilmFingerprint f = fingerprintOf(plan.film, "s.json", "abc", "CIE1931_2", 7, 31, namedCompileOptions({}));
+  const FilmFingerprint back = fingerprintOfText(fingerprintText(f));
+  EXPECT_EQ(fingerprintDifference(back, f), "");
+  EXPECT_EQ(back.sceneFile, "s.json");
+  FilmFingerprint other = f;
+  other.bins += 1;
+  EXPECT_EQ(fingerprintDifference(fingerprintOfText(fingerprintText(other)), f),
+            fmt::format("bins: {} against {}", f.bins + 1, f.bins));
+  EXPECT_THROW(fingerprintOfText("{\"bins\": 3}"), FilmStateError);
 }
 
 TEST(FilmState, StatesOfOtherScenesSeedsOrOverlappingBeamsAreRefused) {

@@ -35,6 +35,16 @@ int World::rootValue(int value) const {
   return value;
 }
 
+std::string World::rootText(const std::string& text) const {
+  uint64_t size = text.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  std::string out = isRoot() ? text : std::string(size_t(size), '\0');
+  constexpr size_t kPiece = size_t(1) << 30;  // MPI counts are ints
+  for (size_t start = 0; start < out.size(); start += kPiece)
+    MPI_Bcast(out.data() + start, int(std::min(kPiece, out.size() - start)), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return out;
+}
+
 std::vector<uint64_t> World::gather(uint64_t value) const {
   std::vector<uint64_t> values(size_t(size_), 0);
   MPI_Allgather(&value, 1, MPI_UINT64_T, values.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);

@@ -3,6 +3,7 @@
 // --mpi). Only mpi_world.cpp includes <mpi.h>: the rest of spectrace, this
 // header's users included, builds without MPI's headers.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "film/spectral_histogram.h"
@@ -30,6 +31,8 @@ class World {
   int largestCode(int code) const;
   // Rank 0's `value`, on every rank.
   int rootValue(int value) const;
+  // Rank 0's `text`, on every rank (the others' `text` is not read).
+  std::string rootText(const std::string& text) const;
   // Every rank's `value`, in rank order, on every rank.
   std::vector<uint64_t> gather(uint64_t value) const;
   // Sums every rank's film into rank 0's exactly (MPI_Reduce of the uint64
