@@ -8,6 +8,7 @@
 #include "cli/cli_numbers.h"
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "cli/version.h"
 
 namespace {
 std::atomic<bool> gCancel{false};
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   using namespace spectrace::cli;
   CLI::App app{"spectrace: a spectral light tracer on Vulkan compute, with an exact CPU reference"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", versionText(), "Print the version (and the git commit built) and exit");
   // CLI11's parse errors start like every other error (exit code 2).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("spectrace: error: ") + e.what() + "\nRun with --help for more information.\n";
