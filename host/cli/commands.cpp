@@ -98,8 +98,9 @@ int runMerge(const MergeCommand& command) {
     const RenderResult result = session.develop(merged, command.output, command.spectral, command.png);
     if (command.state) writeFilmState(*command.state, merged);
     if (!command.quiet)
-      std::fprintf(stderr, "spectrace: merged %zu states, %llu beams -> %s\n", command.states.size(),
-                   (unsigned long long)result.beamsTraced, command.output.c_str());
+      std::fprintf(stderr, "spectrace: merged %zu state%s, %llu beam%s -> %s\n", command.states.size(),
+                   command.states.size() == 1 ? "" : "s", (unsigned long long)result.beamsTraced,
+                   result.beamsTraced == 1 ? "" : "s", command.output.c_str());
     return 0;
   } catch (const FilmStateError& e) {
     std::fprintf(stderr, "spectrace: error: %s\n", e.what());

@@ -1,0 +1,26 @@
+# What merge prints: the count of states and beams it merged, in words that
+# agree with the numbers ("1 state", "2 states").
+#   -DSPECTRACE=path  -DSCENE=scene.json  -DDIR=scratch folder
+include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
+file(REMOVE_RECURSE "${DIR}")
+file(MAKE_DIRECTORY "${DIR}")
+set(quick --device cpu --no-png)
+foreach(part 0 1)
+  run("${SPECTRACE}" render "${SCENE}" ${quick} -q --beams 2000 --shard ${part}/2 -o "${DIR}/part${part}.exr"
+      --state "${DIR}/part${part}.state")
+endforeach()
+
+# Merges the states and fails unless the output matches `regex`.
+function(merged regex)
+  execute_process(COMMAND "${SPECTRACE}" merge ${ARGN} ${quick} -o "${DIR}/merged.exr"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "merge ${ARGN}: exit code ${rc}:\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${regex}")
+    message(FATAL_ERROR "merge ${ARGN}: the output does not match '${regex}':\n${out}${err}")
+  endif()
+endfunction()
+merged("spectrace: merged 1 state, 1000 beams -> " "${DIR}/part0.state")
+merged("spectrace: merged 2 states, 2000 beams -> " "${DIR}/part0.state" "${DIR}/part1.state")
+message(STATUS "merge counted its states and beams in words that agree")
