@@ -31,12 +31,14 @@ struct FdCloser {
 }  // namespace
 
 std::string readInputFile(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
-  auto fail = [&](const std::string& why) { return InputFileError(fmt::format("{}: {}", file.string(), why), why); };
+  auto fail = [&](const std::string& why, bool missing = false) {
+    return InputFileError(fmt::format("{}: {}", file.string(), why), why, missing);
+  };
   struct stat st{};
   if (::stat(file.c_str(), &st) != 0) {
     const int err = errno;
-    throw fail(err == ENOENT ? fmt::format("{} not found", what)
-                             : fmt::format("cannot read the {}: {}", what, errnoText(err)));
+    if (err == ENOENT) throw fail(fmt::format("{} not found", what), true);
+    throw fail(fmt::format("cannot read the {}: {}", what, errnoText(err)));
   }
   // Checked before open(): opening a FIFO for reading blocks until a writer comes.
   if (!S_ISREG(st.st_mode)) throw fail(fmt::format("is {}, not a {}", kindOf(st.st_mode), what));

@@ -18,8 +18,10 @@ inline constexpr uint64_t kMaxInputFileBytes = uint64_t(64) << 20;  // 64 MiB
 // The file cannot be read or breaks a bound. The message is "<path>: <why>";
 // callers turn it into their own error type (SceneError, SpdError, ...).
 struct InputFileError : std::runtime_error {
-  InputFileError(const std::string& message, std::string why) : std::runtime_error(message), reason(std::move(why)) {}
+  InputFileError(const std::string& message, std::string why, bool isMissing = false)
+      : std::runtime_error(message), reason(std::move(why)), missing(isMissing) {}
   std::string reason;  // the message without the path
+  bool missing;        // there is no such file (callers may say where they looked)
 };
 
 // The whole file, when it is a regular file of at most `maxBytes` bytes.

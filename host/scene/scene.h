@@ -68,7 +68,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& file)
 // sourceSha256 is the digest of the value's compact dump.
 Scene parseSceneJson(const nlohmann::json& root, const std::filesystem::path& file);
 // A scene file's bytes, and its JSON (comments tolerated, repeated keys
-// refused); errors are SceneError "<file>: <what>".
+// refused); errors are SceneError "<file>: <what>", and for a missing file
+// "<file>: scene file not found (looked for <absolute path>)".
 std::string readSceneText(const std::filesystem::path& file);
 nlohmann::json readSceneJson(const std::filesystem::path& file);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.

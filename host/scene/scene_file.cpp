@@ -270,7 +270,13 @@ std::string readSceneText(const fs::path& file) {
   try {
     return readInputFile(file, "scene file");
   } catch (const InputFileError& e) {
-    sourceFor(file).fail("", e.reason);
+    // A file that cannot be read has no field to point at. A missing one
+    // also names the absolute path looked for: a relative path resolves
+    // against the working folder, which the path as given does not show.
+    std::string message = fmt::format("{}: {}", file.string(), e.reason);
+    std::error_code ec;
+    if (e.missing) message += fmt::format(" (looked for {})", fs::absolute(file, ec).lexically_normal().string());
+    raiseSceneError(message);
   }
 }
 

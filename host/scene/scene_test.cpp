@@ -351,7 +351,16 @@ TEST_F(SceneTest, FileLevelErrors) {
     loadScene(missing);
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), missing.string() + ": /: scene file not found");
+    EXPECT_EQ(std::string(e.what()),
+              missing.string() + ": scene file not found (looked for " + fs::absolute(missing).string() + ")");
+  }
+  // A relative path: as given, then where it was looked for (the working folder).
+  try {
+    loadScene("no_such_scene.json");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "no_such_scene.json: scene file not found (looked for " +
+                                         (fs::current_path() / "no_such_scene.json").string() + ")");
   }
   try {
     loadScene(dir_);

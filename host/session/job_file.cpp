@@ -112,8 +112,15 @@ void readLine(const fs::path& file, const Line& line, const std::optional<fs::pa
     if (!job.is_object()) c.fail("", fmt::format("a job must be a JSON object (got {})", jf::describe(job)));
     jf::checkObject(c, job, "", {"scene", "output", "beams", "seed", "set", "sweep"}, "a job");
     const std::string sceneName = jf::getString(c, jf::require(c, job, "", "scene", " (the scene file)"), "/scene");
-    const fs::path scenePath =
-        (fs::path(sceneName).is_absolute() ? fs::path(sceneName) : c.dir / sceneName).lexically_normal();
+    const bool relative = !fs::path(sceneName).is_absolute();
+    const fs::path scenePath = (relative ? c.dir / sceneName : fs::path(sceneName)).lexically_normal();
+    // The path as the line gives it, and where it was looked for: relative
+    // to the job file's folder, not to the working folder.
+    std::error_code missing;
+    if (fs::status(scenePath, missing).type() == fs::file_type::not_found)
+      c.fail("/scene", fmt::format("{}: scene file not found (looked for {}{})", sceneName,
+                                   fs::absolute(scenePath, missing).lexically_normal().string(),
+                                   relative ? ", relative to the job file's folder" : ""));
     std::optional<uint64_t> beams, seed;
     if (auto* x = jf::find(job, "beams")) beams = jf::getU64(c, *x, "/beams", 1);
     if (auto* x = jf::find(job, "seed")) seed = jf::getU64(c, *x, "/seed", 0);

@@ -411,7 +411,9 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   try {
     job.scene = loadScene(f.sceneFile);
   } catch (const std::exception& e) {
-    throw FilmStateError(fmt::format("the state's scene {} cannot be read: {}", f.sceneFile, e.what()));
+    // The scene's path is the one the render was given, relative to the
+    // folder it ran in: e.what() names it and, if missing, where it was looked for.
+    throw FilmStateError(fmt::format("cannot read the scene the state was rendered from: {}", e.what()));
   }
   if (job.scene.sourceSha256 != f.sceneSha256)
     throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
