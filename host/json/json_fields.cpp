@@ -95,8 +95,28 @@ std::string suggestion(std::string_view word, const Keys& candidates) {
     }
   }
   size_t limit = word.size() <= 3 ? 1 : word.size() <= 6 ? 2 : 3;
-  if (best.empty() || bestDistance > limit) return "";
-  return fmt::format("; did you mean {}?", jsonQuoted(best));
+  if (!best.empty() && bestDistance <= limit) return fmt::format("; did you mean {}?", jsonQuoted(best));
+  // Else a candidate holding the word or held by it, case aside: catalogue
+  // names carry prefixes the edit distance counts in full ("BK7" for
+  // "N-BK7"). Three characters at least, so that a match means something.
+  const auto lower = [](std::string_view text) {
+    std::string out(text);
+    for (char& ch : out) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return out;
+  };
+  const std::string w = lower(word);
+  best = {};
+  bestDistance = std::numeric_limits<size_t>::max();
+  for (auto c : candidates) {
+    const std::string l = lower(c);
+    const bool holds = w.size() >= 3 && l.find(w) != std::string::npos;
+    const bool held = l.size() >= 3 && w.find(l) != std::string::npos;
+    if ((holds || held) && editDistance(word, c) < bestDistance) {
+      bestDistance = editDistance(word, c);
+      best = c;
+    }
+  }
+  return best.empty() ? "" : fmt::format("; did you mean {}?", jsonQuoted(best));
 }
 
 void Source::fail(const std::string& ptr, const std::string& what) const {

@@ -39,7 +39,9 @@ std::string fmtNum(double x);
 std::string describe(const Json& v);
 // Case-insensitive Levenshtein distance.
 size_t editDistance(std::string_view a, std::string_view b);
-// "; did you mean "x"?" when one candidate is close to `word`, else "".
+// "; did you mean "x"?" when one candidate is close to `word` (by edit
+// distance, or holding it or held by it, case aside: "BK7" and "N-BK7"),
+// else "".
 std::string suggestion(std::string_view word, const Keys& candidates);
 
 // The document being read: names it in messages and says how to fail.

@@ -30,6 +30,13 @@ TEST(JsonFields, DescribeAndSuggest) {
   EXPECT_EQ(describe(Json::object()), "an object");
   EXPECT_EQ(suggestion("positon", {"position", "look_at"}), "; did you mean \"position\"?");
   EXPECT_EQ(suggestion("zzz", {"position"}), "");
+  // A name without its catalogue prefix, or with a word more: held, or holding.
+  EXPECT_EQ(suggestion("BK7", {"N-BK7", "N-SF11", "F2", "fused_silica"}), "; did you mean \"N-BK7\"?");
+  EXPECT_EQ(suggestion("silica", {"N-BK7", "N-SF11", "F2", "fused_silica"}), "; did you mean \"fused_silica\"?");
+  EXPECT_EQ(suggestion("N-BK7 glass", {"N-BK7", "N-SF11"}), "; did you mean \"N-BK7\"?");
+  // Two characters are too few to mean a match.
+  EXPECT_EQ(suggestion("F", {"N-BK7", "F2"}), "; did you mean \"F2\"?");  // by edit distance, as before
+  EXPECT_EQ(suggestion("ab", {"xxabyyzz"}), "");
   EXPECT_EQ(editDistance("D65", "d65"), 0u);
 }
 

@@ -555,6 +555,10 @@ TEST_F(ObjectTest, DielectricErrors) {
   };
   expectMaterial(R"({"type": "dielectric", "glass": "N-BK8"})"_json, "/objects/0/material/glass",
                  {"unknown glass \"N-BK8\"; did you mean \"N-BK7\"?", "N-BK7, N-SF11, F2, fused_silica"});
+  // The name without the catalogue's "N-" prefix: too far by edit distance
+  // for three letters, but held in the catalogue's name.
+  expectMaterial(R"({"type": "dielectric", "glass": "BK7"})"_json, "/objects/0/material/glass",
+                 {"unknown glass \"BK7\"; did you mean \"N-BK7\"?"});
   expectMaterial(R"({"type": "dielectric"})"_json, "/objects/0/material", {"a dielectric needs one of \"glass\""});
   expectMaterial(R"({"type": "dielectric", "ior": 1.5, "glass": "F2"})"_json, "/objects/0/material",
                  {"ambiguous"});
