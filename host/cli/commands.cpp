@@ -77,15 +77,8 @@ void applyStateOptions(const RenderCommand& command, RenderJob& job) {
 
 int runMerge(const MergeCommand& command) {
   try {
-    FilmState merged = readFilmState(command.states.front());
-    for (size_t i = 1; i < command.states.size(); ++i) {
-      const FilmState next = readFilmState(command.states[i]);
-      if (std::string why = mergeRefusal(merged, next); !why.empty()) {
-        std::fprintf(stderr, "spectrace: error: cannot merge %s: %s\n", command.states[i].c_str(), why.c_str());
-        return 2;
-      }
-      merged = mergeStates(merged, next);
-    }
+    // Every state read and checked, and every sum, before any output is touched.
+    FilmState merged = mergeStateFiles(command.states);
     // The same output checks as render, before the film is developed: the
     // states and the scene they name are inputs, never overwritten.
     std::vector<std::filesystem::path> inputs(command.states.begin(), command.states.end());

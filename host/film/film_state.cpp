@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -99,6 +100,8 @@ std::vector<BeamRange> sortedRanges(std::vector<BeamRange> ranges) {
   return ranges;
 }
 
+std::string rangeText(const BeamRange& r) { return fmt::format("[{}, +{})", r.first, r.count); }
+
 std::string overlap(const std::vector<BeamRange>& a, const std::vector<BeamRange>& b) {
   for (const BeamRange& x : a)
     for (const BeamRange& y : b) {
@@ -106,10 +109,17 @@ std::string overlap(const std::vector<BeamRange>& a, const std::vector<BeamRange
       const uint64_t start = std::max(x.first, y.first);
       const bool xCovers = start - x.first < x.count, yCovers = start - y.first < y.count;
       if (x.count && y.count && xCovers && yCovers)
-        return fmt::format("their beam ranges overlap: [{}, +{}) and [{}, +{}) share beam {}", x.first, x.count,
-                           y.first, y.count, start);
+        return fmt::format("/ranges: their beam ranges overlap: {} and {} share beam {}", rangeText(x), rangeText(y),
+                           start);
     }
   return "";
+}
+
+// The beams of all the ranges, or nullopt when they pass 2^64 - 1.
+std::optional<uint64_t> beamsOf(const std::vector<BeamRange>& ranges, uint64_t total = 0) {
+  for (const BeamRange& r : ranges)
+    if (__builtin_add_overflow(total, r.count, &total)) return std::nullopt;
+  return total;
 }
 
 void appendWords(std::vector<unsigned char>& out, const std::vector<uint64_t>& words) {
@@ -282,16 +292,41 @@ std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprin
 std::string mergeRefusal(const FilmState& a, const FilmState& b) {
   if (std::string field = fingerprintDifference(a.fingerprint, b.fingerprint); !field.empty())
     return "they differ in " + field;
-  return overlap(a.ranges, b.ranges);
+  if (std::string shared = overlap(a.ranges, b.ranges); !shared.empty()) return shared;
+  if (!beamsOf(b.ranges, a.beams()))
+    return fmt::format("/ranges: {} + {} beams pass 2^64 - 1, the most a state counts", a.beams(), b.beams());
+  return "";
 }
 
 FilmState mergeStates(const FilmState& a, const FilmState& b) {
-  if (std::string why = mergeRefusal(a, b); !why.empty()) throw FilmStateError("cannot merge: " + why);
+  if (std::string why = mergeRefusal(a, b); !why.empty()) throw FilmStateError(why);
   FilmState out = a;
-  out.histogram.merge(b.histogram);
+  try {
+    out.histogram.merge(b.histogram);
+  } catch (const CounterOverflow& e) {
+    throw FilmStateError(e.what());
+  }
   out.ranges.insert(out.ranges.end(), b.ranges.begin(), b.ranges.end());
+  // An empty range (a render stopped before its first beam) says nothing
+  // beside others, and a reader refuses it there.
+  std::erase_if(out.ranges, [](const BeamRange& r) { return r.count == 0; });
   out.ranges = sortedRanges(std::move(out.ranges));
   return out;
+}
+
+FilmState mergeStateFiles(const std::vector<std::filesystem::path>& files) {
+  FilmState merged = readFilmState(files.at(0));
+  std::string before = files[0].string();
+  for (size_t i = 1; i < files.size(); ++i) {
+    const FilmState next = readFilmState(files[i]);
+    try {
+      merged = mergeStates(merged, next);
+    } catch (const FilmStateError& e) {
+      throw FilmStateError(fmt::format("cannot merge {} with {}: {}", files[i].string(), before, e.what()));
+    }
+    before += ", " + files[i].string();
+  }
+  return merged;
 }
 
 }  // namespace spectrace

@@ -79,9 +79,14 @@ FilmFingerprint fingerprintOfText(const std::string& text);
 // SHA-256 is).
 std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprint& b);
 // Why `a` and `b` cannot be merged ("" when they can): the first fingerprint
-// field that differs, or the beams their ranges share.
+// field that differs, the beams their ranges share, or more beams in all
+// than 2^64 - 1.
 std::string mergeRefusal(const FilmState& a, const FilmState& b);
-// a + b, exactly. Throws FilmStateError with mergeRefusal's reason.
+// a + b, exactly. Throws FilmStateError with mergeRefusal's reason, or the
+// counter whose sum would pass 2^64 - 1 (channel, pixel, bin).
 FilmState mergeStates(const FilmState& a, const FilmState& b);
+// The states of `files` (at least one) read and merged in order. A refusal
+// names the files: "cannot merge c.state with a.state, b.state: <why>".
+FilmState mergeStateFiles(const std::vector<std::filesystem::path>& files);
 
 }  // namespace spectrace

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -252,6 +254,129 @@ TEST(FilmState, StatesOfOtherScenesSeedsOrOverlappingBeamsAreRefused) {
   EXPECT_EQ(mergeRefusal(top, below), "");
   below.ranges = {{UINT64_MAX - 20, 12}};
   EXPECT_NE(mergeRefusal(top, below), "");
+}
+
+// A 3 x 2 pixel film of 4 bins with the given ranges and counted beams, as
+// a test crafts it: writeFilmState signs whatever it is given.
+FilmState craftedState(std::vector<BeamRange> ranges, uint64_t countedBeams = 0, bool exactColour = false,
+                       uint32_t weightUnits = 1) {
+  FilmState state;
+  state.fingerprint = fingerprintOf(FilmLayout{}, "scene.json", "abc", "CIE1931_2", 3, 31, namedCompileOptions({}));
+  FilmFingerprint& f = state.fingerprint;
+  f.bins = f.storedBins = 4;
+  f.pixelsX = 3;
+  f.pixelsY = 2;
+  f.window = {0, 0, 3, 2};
+  f.exactColour = exactColour;
+  f.colourFromBins = false;
+  f.weightUnits = weightUnits;
+  state.ranges = std::move(ranges);
+  state.histogram = SpectralHistogram(3, 2, 4, exactColour, weightUnits);
+  state.histogram.countedBeams = countedBeams;
+  return state;
+}
+
+// readFilmState's refusal of `file`, or "" when it reads.
+std::string readRefusal(const fs::path& file) {
+  try {
+    readFilmState(file);
+    return "";
+  } catch (const FilmStateError& e) {
+    return e.what();
+  }
+}
+
+// The refusal of `state` written to a file and read back: "" when it reads.
+std::string refusalOf(const FilmState& state) {
+  const fs::path file = tempFile("crafted.state");
+  writeFilmState(file, state);
+  return readRefusal(file);
+}
+
+constexpr uint64_t kHalf = uint64_t(1) << 63;
+
+// The sum of two states' counters past 2^64 - 1 would wrap to a small count
+// (an image that was bright becomes black): refused, naming the channel, the
+// pixel, the bin and the files.
+TEST(FilmState, MergedCountersPassing2To64AreRefusedNamingTheCounter) {
+  FilmState a = craftedState({{0, 10}}, 0, true, 16), b = craftedState({{10, 10}}, 0, true, 16);
+  const size_t pixel = 1 * 3 + 2;  // (2, 1)
+  a.histogram.at(pixel, 3) = UINT64_MAX - 4;
+  b.histogram.at(pixel, 3) = 4;
+  EXPECT_NO_THROW(mergeStates(a, b)) << "a sum of exactly 2^64 - 1 fits";
+  b.histogram.at(pixel, 3) = 5;
+  try {
+    mergeStates(a, b);
+    ADD_FAILURE() << "merged counters that pass 2^64 - 1";
+  } catch (const FilmStateError& e) {
+    EXPECT_STREQ(e.what(), "counts at pixel (2, 1), bin 3: 18446744073709551611 + 5 passes 2^64 - 1, the most a "
+                           "counter holds");
+  }
+  b.histogram.at(pixel, 3) = 0;
+  a.histogram.colourSums()[3 * 3 + 1] = UINT64_MAX;  // pixel (0, 1), Y
+  b.histogram.colourSums()[3 * 3 + 1] = 1;
+  EXPECT_THROW(
+      {
+        try {
+          mergeStates(a, b);
+        } catch (const FilmStateError& e) {
+          EXPECT_NE(std::string(e.what()).find("colour_sums at pixel (0, 1), Y: 18446744073709551615 + 1"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      FilmStateError);
+  // Through files, the refusal names both.
+  const fs::path fileA = tempFile("a.state"), fileB = tempFile("b.state");
+  writeFilmState(fileA, a);
+  writeFilmState(fileB, b);
+  try {
+    mergeStateFiles({fileA, fileB});
+    ADD_FAILURE() << "merged files whose counters pass 2^64 - 1";
+  } catch (const FilmStateError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("cannot merge " + fileB.string() + " with " + fileA.string() +
+                                              ": colour_sums at pixel (0, 1), Y: ",
+                                          0),
+              0u)
+        << e.what();
+  }
+}
+
+// Merging stops at the first counter that would pass 2^64 - 1 and leaves it
+// and the ones after it as they were; the counted beams are checked too.
+TEST(FilmState, AddChannelStopsAtTheFirstOverflow) {
+  std::vector<uint64_t> mine = {1, UINT64_MAX, 7, UINT64_MAX}, theirs = {2, 1, 1, 1};
+  EXPECT_EQ(addChannel(mine.data(), theirs.data(), 4, 1), std::optional<size_t>(1));
+  EXPECT_EQ(mine, (std::vector<uint64_t>{3, UINT64_MAX, 7, UINT64_MAX}));
+  mine = {1, 2};
+  theirs = {UINT64_MAX - 1, 0};
+  EXPECT_EQ(addChannel(mine.data(), theirs.data(), 2, 1), std::nullopt);
+  EXPECT_EQ(mine, (std::vector<uint64_t>{UINT64_MAX, 2}));
+  // Two words a counter: the low word's carry reaches the high word, and
+  // only a sum past 2^128 - 1 stops the add.
+  mine = {UINT64_MAX, 5, UINT64_MAX, UINT64_MAX, 0, 0};
+  theirs = {2, 1, 1, 0, 1, 1};
+  EXPECT_EQ(addChannel(mine.data(), theirs.data(), 6, 2), std::optional<size_t>(1));
+  EXPECT_EQ(mine, (std::vector<uint64_t>{1, 7, UINT64_MAX, UINT64_MAX, 0, 0}));
+  SpectralHistogram a(1, 1, 1), b(1, 1, 1);
+  a.countedBeams = UINT64_MAX;
+  b.countedBeams = 1;
+  EXPECT_THROW(a.merge(b), CounterOverflow);
+}
+
+// Two states whose ranges together hold 2^64 beams: their sum would wrap.
+TEST(FilmState, MergedRangesOfMoreThan2To64Minus1BeamsAreRefused) {
+  const FilmState low = craftedState({{0, kHalf}}), high = craftedState({{kHalf, kHalf}});
+  EXPECT_EQ(mergeRefusal(low, high),
+            "/ranges: 9223372036854775808 + 9223372036854775808 beams pass 2^64 - 1, the most a state counts");
+  EXPECT_THROW(mergeStates(low, high), FilmStateError);
+  EXPECT_EQ(mergeStates(low, craftedState({{kHalf, kHalf - 1}})).beams(), UINT64_MAX);
+  // An empty range (a render stopped before its first beam) is dropped, so
+  // the merge reads back.
+  const FilmState merged = mergeStates(craftedState({{0, 10}}), craftedState({{10, 0}}));
+  EXPECT_EQ(merged.ranges, (std::vector<BeamRange>{{0, 10}}));
+  EXPECT_EQ(refusalOf(merged), "");
 }
 
 // Three shards of different sizes, traced on the CPU, the GPU and the CPU,

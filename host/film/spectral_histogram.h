@@ -6,6 +6,7 @@
 // (WideCount: low word, high word; device_shared.h).
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,6 +23,20 @@ inline const char* filmChannelName(uint32_t c) {
 // A counter's exact value, and near it in double.
 inline unsigned __int128 wideValue(device::WideCount w) { return (unsigned __int128)w.high << 64 | w.low; }
 inline double realOf(device::WideCount w) { return double(w.high) * 0x1p64 + double(w.low); }
+
+// A merge that would carry a counter past what it holds (2^64 - 1, or
+// 2^128 - 1 in two words), where it would wrap to a small count. The message
+// names the channel, pixel and bin, and both values.
+struct CounterOverflow : std::overflow_error {
+  using std::overflow_error::overflow_error;
+};
+
+// Adds `size` words of one channel's counters, `theirs` to `mine`, counter
+// by counter (`counterWords` words each, low word first, with its carry),
+// up to the first whose sum would overflow: its index among the counters
+// (that counter and the ones after it left as they were), or nullopt when
+// every one was added. The one place that knows a channel's counter width.
+std::optional<size_t> addChannel(uint64_t* mine, const uint64_t* theirs, size_t size, uint32_t counterWords);
 
 struct SpectralHistogram {
   uint32_t pixelsX = 0, pixelsY = 0, bins = 0;
@@ -89,25 +104,9 @@ struct SpectralHistogram {
     return sum;
   }
   // Adds another histogram of the same shape (a render over other beams).
-  void merge(const SpectralHistogram& other) {
-    if (!sameShape(other)) throw std::invalid_argument("cannot merge histograms of different shapes");
-    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)  // every channel merges by exact addition
-      addCounters(channel(c).data(), other.channel(c).data(), channel(c).size(), counterWords());
-    countedBeams += other.countedBeams;
-  }
-  // `size` words of theirs added to mine, counter by counter, `words` words
-  // each (with the low word's carry).
-  static void addCounters(uint64_t* mine, const uint64_t* theirs, size_t size, uint32_t words) {
-    if (words == 1) {
-      for (size_t i = 0; i < size; ++i) mine[i] += theirs[i];
-      return;
-    }
-    for (size_t i = 0; i + 1 < size; i += 2) {
-      const uint64_t low = mine[i] + theirs[i];
-      mine[i + 1] += theirs[i + 1] + (low < mine[i] ? 1 : 0);
-      mine[i] = low;
-    }
-  }
+  // Throws CounterOverflow when a sum would overflow; this histogram is
+  // then partly added, so merge into a copy that can be dropped.
+  void merge(const SpectralHistogram& other);
 };
 
 }  // namespace spectrace

@@ -53,22 +53,28 @@ std::vector<uint64_t> World::gather(uint64_t value) const {
 
 namespace {
 
-// MPI's reduction over a weighted film's two-word counters (low, high):
-// MPI_SUM over the words would drop the low word's carry.
-void addWideCounters(void* in, void* inout, int* length, MPI_Datatype*) {
-  SpectralHistogram::addCounters(static_cast<uint64_t*>(inout), static_cast<const uint64_t*>(in), size_t(*length) * 2,
-                                 2);
+// Set on any rank whose part of the reduction found a sum that would wrap
+// (MPI's user functions cannot throw); the ranks agree on it afterwards.
+bool reduceOverflowed = false;
+
+// MPI's reduction of film counters of `words` words, through the merge's
+// own add (addChannel): MPI_SUM would drop a two-word counter's carry and
+// let any counter wrap.
+template <uint32_t words>
+void addCounters(void* in, void* inout, int* length, MPI_Datatype*) {
+  if (addChannel(static_cast<uint64_t*>(inout), static_cast<const uint64_t*>(in), size_t(*length) * words, words))
+    reduceOverflowed = true;
 }
 
 // Sums `values` (counters of `words` words) over the ranks into rank 0's, in
 // pieces that fit MPI's int counts.
 void sumArrayOnRoot(std::vector<uint64_t>& values, uint32_t words, bool root) {
   MPI_Datatype counter = MPI_UINT64_T;
-  MPI_Op sum = MPI_SUM;
+  MPI_Op sum;
+  MPI_Op_create(words == 2 ? &addCounters<2> : &addCounters<1>, 1, &sum);
   if (words == 2) {
     MPI_Type_contiguous(2, MPI_UINT64_T, &counter);
     MPI_Type_commit(&counter);
-    MPI_Op_create(&addWideCounters, 1, &sum);
   }
   constexpr size_t kPiece = size_t(1) << 26;  // counters: 512 MiB of one-word ones
   const size_t counters = values.size() / words;
@@ -78,10 +84,8 @@ void sumArrayOnRoot(std::vector<uint64_t>& values, uint32_t words, bool root) {
     if (root) MPI_Reduce(MPI_IN_PLACE, data, count, counter, sum, 0, MPI_COMM_WORLD);
     else MPI_Reduce(data, nullptr, count, counter, sum, 0, MPI_COMM_WORLD);
   }
-  if (words == 2) {
-    MPI_Op_free(&sum);
-    MPI_Type_free(&counter);
-  }
+  MPI_Op_free(&sum);
+  if (words == 2) MPI_Type_free(&counter);
 }
 
 }  // namespace
@@ -96,8 +100,11 @@ void World::sumOnRoot(SpectralHistogram& film) const {
   MPI_Bcast(rootShape.data(), int(rootShape.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
   if (largestCode(shape == rootShape ? 0 : 1) != 0)
     throw std::runtime_error("the ranks' films differ in shape (was the scene file changed during the render?)");
+  reduceOverflowed = false;
   for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
     sumArrayOnRoot(film.channel(c), film.counterWords(), isRoot());
+  if (largestCode(reduceOverflowed ? 1 : 0) != 0)
+    throw CounterOverflow("the ranks' films sum past what a counter holds (2^64 - 1, or 2^128 - 1 in two words)");
   std::vector<uint64_t> counted{film.countedBeams};
   sumArrayOnRoot(counted, 1, isRoot());
   film.countedBeams = counted[0];
