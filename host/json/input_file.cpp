@@ -22,18 +22,9 @@ const char* kindOf(mode_t mode) {
   return "not a regular file";
 }
 
-// Closes the descriptor on every path out.
-struct FdCloser {
-  int fd;
-  ~FdCloser() { ::close(fd); }
-};
-
 }  // namespace
 
-std::string readInputFile(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
-  auto fail = [&](const std::string& why, bool missing = false) {
-    return InputFileError(fmt::format("{}: {}", file.string(), why), why, missing);
-  };
+InputFile::InputFile(const std::filesystem::path& file, const char* what) : file_(file), what_(what) {
   struct stat st{};
   if (::stat(file.c_str(), &st) != 0) {
     const int err = errno;
@@ -42,29 +33,56 @@ std::string readInputFile(const std::filesystem::path& file, const char* what, u
   }
   // Checked before open(): opening a FIFO for reading blocks until a writer comes.
   if (!S_ISREG(st.st_mode)) throw fail(fmt::format("is {}, not a {}", kindOf(st.st_mode), what));
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw fail(fmt::format("cannot open the {}: {}", what, errnoText(errno)));
-  const FdCloser closer{fd};
+  fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd_ < 0) throw fail(fmt::format("cannot open the {}: {}", what, errnoText(errno)));
   // fstat again: the path may have been replaced between stat() and open().
-  if (::fstat(fd, &st) != 0) throw fail(fmt::format("cannot read the {}: {}", what, errnoText(errno)));
-  if (!S_ISREG(st.st_mode)) throw fail(fmt::format("is {}, not a {}", kindOf(st.st_mode), what));
-  if (uint64_t(st.st_size) > maxBytes)
-    throw fail(fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what, uint64_t(st.st_size),
-                           maxBytes, maxBytes >> 20));
-  // One byte more than the size: reading it means the file grew while read.
-  const size_t size = size_t(st.st_size);
-  std::string bytes(size + 1, '\0');
+  const bool statted = ::fstat(fd_, &st) == 0;
+  const int err = errno;
+  if (!statted || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    throw fail(statted ? fmt::format("is {}, not a {}", kindOf(st.st_mode), what)
+                       : fmt::format("cannot read the {}: {}", what, errnoText(err)));
+  }
+  size_ = uint64_t(st.st_size);
+}
+
+InputFile::~InputFile() { ::close(fd_); }
+
+InputFileError InputFile::fail(const std::string& why, bool missing) const {
+  return InputFileError(fmt::format("{}: {}", file_.string(), why), why, missing);
+}
+
+size_t InputFile::readUpTo(uint64_t offset, void* out, size_t bytes) const {
   size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+  while (done < bytes) {
+    const ssize_t n = ::pread(fd_, static_cast<char*>(out) + done, bytes - done, off_t(offset + done));
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw fail(fmt::format("error while reading the {}: {}", what, errnoText(errno)));
+      throw fail(fmt::format("error while reading the {}: {}", what_, errnoText(errno)));
     }
     if (n == 0) break;
     done += size_t(n);
   }
-  if (done > size) throw fail(fmt::format("the {} grew while it was read; refusing a file that is still being written", what));
+  return done;
+}
+
+void InputFile::readAt(uint64_t offset, void* out, size_t bytes) const {
+  if (readUpTo(offset, out, bytes) != bytes)
+    throw fail(fmt::format("the {} ended before byte {}; refusing a file that shrank while it was read", what_,
+                           offset + bytes));
+}
+
+std::string readInputFile(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
+  const InputFile in(file, what);
+  if (in.size() > maxBytes)
+    throw in.fail(fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what, in.size(), maxBytes,
+                              maxBytes >> 20));
+  // One byte more than the size: reading it means the file grew while read.
+  const size_t size = size_t(in.size());
+  std::string bytes(size + 1, '\0');
+  const size_t done = in.readUpTo(0, bytes.data(), bytes.size());
+  if (done > size)
+    throw in.fail(fmt::format("the {} grew while it was read; refusing a file that is still being written", what));
   bytes.resize(done);
   return bytes;
 }

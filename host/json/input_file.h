@@ -24,6 +24,33 @@ struct InputFileError : std::runtime_error {
   bool missing;        // there is no such file (callers may say where they looked)
 };
 
+// A regular file opened for reading: refused (a device, a pipe, a folder,
+// missing) before anything is read, so a reader may look at its size and
+// read only the parts it needs (a render state checks its header first).
+class InputFile {
+ public:
+  // `what` names the kind of file in messages ("scene file", "state file").
+  InputFile(const std::filesystem::path& file, const char* what);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  const std::filesystem::path& path() const { return file_; }
+  uint64_t size() const { return size_; }  // when it was opened
+  // Up to `bytes` bytes from `offset`; fewer only where the file ends.
+  size_t readUpTo(uint64_t offset, void* out, size_t bytes) const;
+  // Exactly `bytes` bytes from `offset`; a file that ends before is refused.
+  void readAt(uint64_t offset, void* out, size_t bytes) const;
+  // "<path>: <why>", as readInputFile's errors.
+  InputFileError fail(const std::string& why, bool missing = false) const;
+
+ private:
+  std::filesystem::path file_;
+  const char* what_;
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
 // The whole file, when it is a regular file of at most `maxBytes` bytes.
 // `what` names the kind of file in messages ("scene file", "SPD file").
 std::string readInputFile(const std::filesystem::path& file, const char* what,
