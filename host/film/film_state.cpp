@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@ namespace spectrace {
 namespace {
 
 using nlohmann::json;
+namespace jf = json_fields;
 
 constexpr char kMagic[8] = {'S', 'P', 'C', 'T', 'R', 'S', 'T', 'A'};
 // 3: weighted films in two-word counters (kWeightUnitsFractional, 2^63);
@@ -56,41 +58,93 @@ json toJson(const FilmFingerprint& f) {
           {"compile_options", f.compileOptions}};
 }
 
-FilmFingerprint fingerprintFromJson(const json& j, uint32_t version) {
-  FilmFingerprint f;
-  f.sceneFile = j.at("scene_file").get<std::string>();
-  f.sceneSha256 = j.at("scene_sha256").get<std::string>();
-  f.observer = j.at("observer").get<std::string>();
-  f.lambdaMinNm = j.at("spectrum_min_nm").get<double>();
-  f.lambdaMaxNm = j.at("spectrum_max_nm").get<double>();
-  f.bins = j.at("bins").get<uint32_t>();
-  f.pixelsX = j.at("pixels_x").get<uint32_t>();
-  f.pixelsY = j.at("pixels_y").get<uint32_t>();
-  const auto& w = j.at("window");
-  f.window = {w.at(0).get<uint32_t>(), w.at(1).get<uint32_t>(), w.at(2).get<uint32_t>(), w.at(3).get<uint32_t>()};
-  f.firstStoredBin = j.at("first_stored_bin").get<uint32_t>();
-  f.storedBins = j.at("stored_bins").get<uint32_t>();
-  f.exactColour = j.at("exact_colour").get<bool>();
-  f.colourFromBins = j.value("colour_from_bins", false);
-  f.weightUnits = j.at("weight_units").get<uint64_t>();
-  f.seed = j.at("seed").get<uint64_t>();
-  f.specialisation = j.at("specialisation").get<uint32_t>();
-  if (version >= 2) {
-    for (const auto& [name, value] : j.at("compile_options").items()) f.compileOptions[name] = value.get<bool>();
-  } else {
-    // Version 1 recorded four options and the film's colour; the other two
-    // options it did not record are taken at their defaults (a version 1
-    // state of a --no-connect render is refused on resume by its weight
-    // units, not silently mixed).
-    f.compileOptions["aim"] = j.at("aimed").get<bool>();
-    f.compileOptions["skip_unreachable_lights"] = j.at("skip_unreachable_lights").get<bool>();
-    f.compileOptions["trim_spectrum"] = j.at("trim_spectrum").get<bool>();
-    f.compileOptions["trim_pixels"] = j.at("trim_pixels").get<bool>();
-    f.compileOptions["exact_colour"] = f.exactColour || f.colourFromBins;
-    f.compileOptions["colour_from_bins"] = f.colourFromBins;
-    f.compileOptions["connect"] = true;
-    f.compileOptions["brute_force_objects"] = false;
+// Header refusals are "<file>: <json pointer>: <what is wrong>".
+[[noreturn]] void raiseStateError(const std::string& message) { throw FilmStateError(message); }
+
+jf::Source sourceOf(const std::filesystem::path& file) {
+  jf::Source source;
+  source.file = file.string();
+  source.raise = raiseStateError;
+  return source;
+}
+
+// The fields of one header object, each refused by its pointer when it is
+// missing or of the wrong kind.
+struct HeaderFields {
+  const jf::Source& source;
+  const json& object;
+  std::string ptr;
+
+  std::string where(const std::string& key) const { return jf::child(ptr, key); }
+  const json& at(const std::string& key) const { return jf::require(source, object, ptr, key); }
+  uint64_t u64(const std::string& key) const { return jf::getU64(source, at(key), where(key), 0); }
+  uint32_t u32(const std::string& key) const { return u32Of(at(key), where(key)); }
+  uint32_t u32Of(const json& v, const std::string& at) const {
+    return uint32_t(jf::getInt(source, v, at, 0, UINT32_MAX));
   }
+  double number(const std::string& key) const { return jf::getNumber(source, at(key), where(key)); }
+  std::string text(const std::string& key) const { return jf::getString(source, at(key), where(key), true); }
+  bool flagOf(const json& v, const std::string& at) const {
+    if (!v.is_boolean()) source.fail(at, fmt::format("must be true or false (got {})", jf::describe(v)));
+    return v.get<bool>();
+  }
+  bool flag(const std::string& key) const { return flagOf(at(key), where(key)); }
+  HeaderFields child(const std::string& key) const {
+    if (!at(key).is_object())
+      source.fail(where(key), fmt::format("must be an object (got {})", jf::describe(at(key))));
+    return {source, at(key), where(key)};
+  }
+};
+
+PixelWindow windowOf(const HeaderFields& j) {
+  const json& w = j.at("window");
+  if (!w.is_array() || w.size() != 4)
+    j.source.fail(j.where("window"), fmt::format("must be [x0, y0, width, height] (got {})", jf::describe(w)));
+  auto part = [&](size_t i) { return j.u32Of(w[i], jf::child(j.where("window"), i)); };
+  return {part(0), part(1), part(2), part(3)};
+}
+
+std::map<std::string, bool> compileOptionsOf(const HeaderFields& j, const FilmFingerprint& f, uint32_t version) {
+  std::map<std::string, bool> options;
+  if (version >= 2) {
+    const HeaderFields named = j.child("compile_options");
+    for (const auto& [name, value] : named.object.items()) options[name] = named.flagOf(value, named.where(name));
+    return options;
+  }
+  // Version 1 recorded four options and the film's colour; the other two
+  // options it did not record are taken at their defaults (a version 1
+  // state of a --no-connect render is refused on resume by its weight
+  // units, not silently mixed).
+  options["aim"] = j.flag("aimed");
+  options["skip_unreachable_lights"] = j.flag("skip_unreachable_lights");
+  options["trim_spectrum"] = j.flag("trim_spectrum");
+  options["trim_pixels"] = j.flag("trim_pixels");
+  options["exact_colour"] = f.exactColour || f.colourFromBins;
+  options["colour_from_bins"] = f.colourFromBins;
+  options["connect"] = true;
+  options["brute_force_objects"] = false;
+  return options;
+}
+
+FilmFingerprint fingerprintFromJson(const HeaderFields& j, uint32_t version) {
+  FilmFingerprint f;
+  f.sceneFile = j.text("scene_file");
+  f.sceneSha256 = j.text("scene_sha256");
+  f.observer = j.text("observer");
+  f.lambdaMinNm = j.number("spectrum_min_nm");
+  f.lambdaMaxNm = j.number("spectrum_max_nm");
+  f.bins = j.u32("bins");
+  f.pixelsX = j.u32("pixels_x");
+  f.pixelsY = j.u32("pixels_y");
+  f.window = windowOf(j);
+  f.firstStoredBin = j.u32("first_stored_bin");
+  f.storedBins = j.u32("stored_bins");
+  f.exactColour = j.flag("exact_colour");
+  f.colourFromBins = jf::find(j.object, "colour_from_bins") && j.flag("colour_from_bins");
+  f.weightUnits = j.u64("weight_units");
+  f.seed = j.u64("seed");
+  f.specialisation = j.u32("specialisation");
+  f.compileOptions = compileOptionsOf(j, f, version);
   return f;
 }
 
@@ -127,6 +181,204 @@ void appendWords(std::vector<unsigned char>& out, const std::vector<uint64_t>& w
   out.resize(at + words.size() * sizeof(uint64_t));
   // Little-endian on every machine we build for (x86-64, arm64).
   if (!words.empty()) std::memcpy(out.data() + at, words.data(), words.size() * sizeof(uint64_t));
+}
+
+// Reading. Everything the header says is checked before the arrays are
+// read: a file is refused by its size, not after reading gigabytes.
+
+// Refuses a range that cannot be beams of one render: one that runs past
+// 2^64 (beam numbers never wrap to 0), or an empty one beside others (a
+// render writes one empty range only when it stopped before its first beam).
+void checkRange(const jf::Source& source, const std::vector<BeamRange>& ranges, size_t i) {
+  const BeamRange& r = ranges[i];
+  const std::string at = jf::child("/ranges", i);
+  if (r.count != 0 && r.count - 1 > UINT64_MAX - r.first)  // its last beam, first + count - 1, wraps
+    source.fail(at, fmt::format("{} runs past beam 2^64 - 1; beam numbers do not wrap to 0", rangeText(r)));
+  if (r.count == 0 && ranges.size() > 1)
+    source.fail(at, fmt::format("{} holds no beams; only a state of no beams at all has an empty range", rangeText(r)));
+}
+
+// Refuses two ranges of one state that share beams: they would be counted twice.
+void checkDisjoint(const jf::Source& source, const std::vector<BeamRange>& ranges) {
+  std::vector<size_t> order(ranges.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ranges[a].first < ranges[b].first; });
+  // Sorted by first beam, two ranges share beams only if two neighbours do.
+  for (size_t k = 1; k < order.size(); ++k) {
+    const BeamRange &a = ranges[order[k - 1]], &b = ranges[order[k]];
+    if (b.first - a.first >= a.count) continue;
+    const size_t early = std::min(order[k - 1], order[k]), late = std::max(order[k - 1], order[k]);
+    source.fail(jf::child("/ranges", late), fmt::format("{} and /ranges/{} {} share beam {}", rangeText(ranges[late]),
+                                                        early, rangeText(ranges[early]), b.first));
+  }
+}
+
+// The beams the ranges hold, after refusing ranges no render writes.
+uint64_t checkRanges(const jf::Source& source, const std::vector<BeamRange>& ranges) {
+  for (size_t i = 0; i < ranges.size(); ++i) checkRange(source, ranges, i);
+  checkDisjoint(source, ranges);
+  const auto beams = beamsOf(ranges);
+  if (!beams) source.fail("/ranges", "the ranges hold more than 2^64 - 1 beams in all, the most a state counts");
+  return *beams;
+}
+
+std::vector<BeamRange> rangesOf(const HeaderFields& header) {
+  const json& list = header.at("ranges");
+  if (!list.is_array()) header.source.fail("/ranges", fmt::format("must be an array (got {})", jf::describe(list)));
+  std::vector<BeamRange> ranges;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = jf::child("/ranges", i);
+    if (!list[i].is_array() || list[i].size() != 2)
+      header.source.fail(at, fmt::format("must be [first, count] (got {})", jf::describe(list[i])));
+    ranges.push_back({jf::getU64(header.source, list[i][0], jf::child(at, 0), 0),
+                      jf::getU64(header.source, list[i][1], jf::child(at, 1), 0)});
+  }
+  return ranges;
+}
+
+// The 16 bytes before the header.
+struct StatePrefix {
+  std::array<unsigned char, kPrefixBytes> bytes{};
+  uint32_t version = 0, headerBytes = 0;
+};
+
+// A header holds a fingerprint and ranges: far below this, even for a merge of
+// many states, and reading a bigger one would cost memory before its checks.
+constexpr uint32_t kMaxHeaderBytes = uint32_t(kMaxInputFileBytes);
+
+StatePrefix readPrefix(const InputFile& in) {
+  StatePrefix p;
+  const size_t got = in.readUpTo(0, p.bytes.data(), kPrefixBytes);
+  if (got < sizeof kMagic || std::memcmp(p.bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw in.fail("not a spectrace state file (no SPCTRSTA magic)");
+  if (in.size() < kPrefixBytes + kDigestBytes)
+    throw in.fail(fmt::format("the file ends after {} bytes, before its header", in.size()));
+  std::memcpy(&p.version, p.bytes.data() + 8, 4);
+  std::memcpy(&p.headerBytes, p.bytes.data() + 12, 4);
+  if (p.version < 1 || p.version > kVersion)
+    throw in.fail(fmt::format("format version {} (this spectrace reads 1 to {})", p.version, kVersion));
+  if (p.headerBytes > kMaxHeaderBytes)
+    throw in.fail(fmt::format("header length {} bytes: more than the {} MiB a header may have", p.headerBytes,
+                              kMaxHeaderBytes >> 20));
+  if (kPrefixBytes + p.headerBytes + kDigestBytes > in.size())
+    throw in.fail(fmt::format("header length {} bytes runs past the end of the file ({} bytes)", p.headerBytes,
+                              in.size()));
+  return p;
+}
+
+struct StateHeader {
+  uint32_t version = 0;
+  std::string text;  // as in the file, padding and all: the digest covers it
+  FilmFingerprint fingerprint;
+  std::vector<BeamRange> ranges;
+  uint64_t countedBeams = 0;
+  std::array<uint64_t, device::kFilmChannelCount> lengths{};  // values in each array
+};
+
+StateHeader readHeader(const InputFile& in, const jf::Source& source, const StatePrefix& prefix) {
+  StateHeader h;
+  h.version = prefix.version;
+  h.text.resize(prefix.headerBytes);
+  in.readAt(kPrefixBytes, h.text.data(), h.text.size());
+  const json root = jf::parseJson(source, h.text);
+  if (!root.is_object()) source.fail("", fmt::format("the header must be an object (got {})", jf::describe(root)));
+  const HeaderFields fields{source, root, ""};
+  h.fingerprint = fingerprintFromJson(fields.child("fingerprint"), h.version);
+  if (const uint64_t units = h.fingerprint.weightUnits; units != 1 && units != device::kWeightUnitsFractional)
+    source.fail("/fingerprint/weight_units",
+                fmt::format("{} {}", units,
+                            h.version < 3 ? "is a weighted film of an older spectrace (one-word counters), which this "
+                                            "one cannot merge or resume: render it again"
+                                          : fmt::format("is neither 1 nor {} (2^63)", device::kWeightUnitsFractional)));
+  h.ranges = rangesOf(fields);
+  h.countedBeams = fields.u64("counted_beams");
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) h.lengths[c] = fields.u64(filmChannelName(c));
+  return h;
+}
+
+// A beam is counted at most once (on the sensor, or not at all).
+void checkCountedBeams(const jf::Source& source, const StateHeader& h, uint64_t beams) {
+  if (h.countedBeams > beams)
+    source.fail("/counted_beams", fmt::format("{} beams counted, more than the {} beams of /ranges", h.countedBeams,
+                                              beams));
+}
+
+// Each array has the length of its film, compared in 128 bits before
+// anything is allocated: a header cannot ask for more than its film.
+void checkLengths(const jf::Source& source, const StateHeader& h) {
+  const FilmFingerprint& f = h.fingerprint;
+  const uint32_t held = device::filmChannelSetOf(f.exactColour, f.weightUnits != 1);
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
+    const unsigned __int128 expected =
+        device::filmStoresChannel(held, c)
+            ? (unsigned __int128)f.pixelsX * f.pixelsY * device::filmChannelCounters(c, f.bins) *
+                  device::filmCounterWords(held)
+            : 0;
+    if (h.lengths[c] != expected)
+      source.fail(std::string("/") + filmChannelName(c),
+                  fmt::format("{} values, but its film ({} x {} pixels, {} bins) has {}", h.lengths[c], f.pixelsX,
+                              f.pixelsY, f.bins, expected));
+  }
+}
+
+// The file's size is what the header implies, checked before the arrays
+// are read: a truncated file, or one with bytes after its end, is refused
+// by its size alone.
+void checkFileSize(const InputFile& in, const StateHeader& h) {
+  unsigned __int128 words = 0;
+  std::string arrays;
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
+    words += h.lengths[c];
+    arrays += fmt::format("{}{} /{}", c ? " + " : "", h.lengths[c], filmChannelName(c));
+  }
+  const unsigned __int128 expected = kPrefixBytes + h.text.size() + words * sizeof(uint64_t) + kDigestBytes;
+  if (expected != in.size())
+    throw in.fail(fmt::format("the file is {} bytes, but its header implies {}: {} (magic, version, header length) + "
+                              "{} (header) + 8 x ({}) + {} (SHA-256); it is truncated or has bytes after its end",
+                              in.size(), expected, kPrefixBytes, h.text.size(), arrays, kDigestBytes));
+}
+
+class Sha256 {
+ public:
+  Sha256() : context_(EVP_MD_CTX_new()) { EVP_DigestInit_ex(context_, EVP_sha256(), nullptr); }
+  ~Sha256() { EVP_MD_CTX_free(context_); }
+  Sha256(const Sha256&) = delete;
+  Sha256& operator=(const Sha256&) = delete;
+  void add(const void* data, size_t size) { EVP_DigestUpdate(context_, data, size); }
+  std::array<unsigned char, kDigestBytes> finish() {
+    std::array<unsigned char, kDigestBytes> digest{};
+    unsigned int length = 0;
+    EVP_DigestFinal_ex(context_, digest.data(), &length);
+    return digest;
+  }
+
+ private:
+  EVP_MD_CTX* context_;
+};
+
+// The arrays, read straight into the film, and the SHA-256 of every byte
+// before the last 32 compared with those 32.
+SpectralHistogram readArrays(const InputFile& in, const StatePrefix& prefix, const StateHeader& h) {
+  const FilmFingerprint& f = h.fingerprint;
+  SpectralHistogram film(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
+  film.countedBeams = h.countedBeams;
+  Sha256 digest;
+  digest.add(prefix.bytes.data(), prefix.bytes.size());
+  digest.add(h.text.data(), h.text.size());
+  uint64_t offset = kPrefixBytes + h.text.size();
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
+    std::vector<uint64_t>& words = film.channel(c);
+    // Little-endian on every machine we build for (x86-64, arm64).
+    in.readAt(offset, words.data(), words.size() * sizeof(uint64_t));
+    digest.add(words.data(), words.size() * sizeof(uint64_t));
+    offset += words.size() * sizeof(uint64_t);
+  }
+  std::array<unsigned char, kDigestBytes> stored{};
+  in.readAt(offset, stored.data(), stored.size());
+  if (digest.finish() != stored)
+    throw in.fail("checksum mismatch: the SHA-256 in its last 32 bytes is not that of the bytes before; the file is "
+                  "corrupted");
+  return film;
 }
 
 }  // namespace
@@ -192,83 +444,34 @@ void writeFilmState(const std::filesystem::path& file, const FilmState& state) {
 }
 
 FilmState readFilmState(const std::filesystem::path& file) {
-  auto fail = [&](const std::string& what) -> FilmStateError {
-    return FilmStateError(fmt::format("{}: {}", file.string(), what));
-  };
-  std::string text;
   try {
-    // A state holds the whole film, so no size bound but the film's; a
-    // device node or pipe is still refused before it is read.
-    text = readInputFile(file, "state file", UINT64_MAX);
+    const InputFile in(file, "state file");
+    const jf::Source source = sourceOf(file);
+    const StatePrefix prefix = readPrefix(in);
+    StateHeader header = readHeader(in, source, prefix);
+    const uint64_t beams = checkRanges(source, header.ranges);
+    checkCountedBeams(source, header, beams);
+    checkLengths(source, header);
+    checkFileSize(in, header);
+    FilmState state;
+    state.histogram = readArrays(in, prefix, header);
+    state.fingerprint = std::move(header.fingerprint);
+    state.ranges = sortedRanges(std::move(header.ranges));
+    return state;
   } catch (const InputFileError& e) {
     throw FilmStateError(e.what());
   }
-  const std::basic_string_view<unsigned char> bytes(reinterpret_cast<const unsigned char*>(text.data()), text.size());
-  if (bytes.size() < kPrefixBytes + kDigestBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-    throw fail("not a spectrace state file (no SPCTRSTA magic)");
-  const size_t body = bytes.size() - kDigestBytes;
-  if (sha256(bytes.data(), body) != *reinterpret_cast<const std::array<unsigned char, kDigestBytes>*>(bytes.data() + body))
-    throw fail("checksum mismatch: the file is truncated or corrupted");
-  uint32_t prefix[2];
-  std::memcpy(prefix, bytes.data() + sizeof kMagic, sizeof prefix);
-  if (prefix[0] < 1 || prefix[0] > kVersion)
-    throw fail(fmt::format("format version {} (this spectrace reads 1 to {})", prefix[0], kVersion));
-  if (kPrefixBytes + size_t(prefix[1]) > body) throw fail("the header runs past the end of the file");
-  FilmState state;
-  size_t offset = kPrefixBytes + prefix[1];
-  try {
-    // The header is a few fields deep; a deeper one is not ours (and would cost memory).
-    const json header = json::parse(bytes.begin() + kPrefixBytes, bytes.begin() + long(offset),
-                                    [&fail](int depth, json::parse_event_t, json&) {
-                                      if (depth > json_fields::kMaxJsonDepth) throw fail("bad header: it nests too deep");
-                                      return true;
-                                    });
-    state.fingerprint = fingerprintFromJson(header.at("fingerprint"), prefix[0]);
-    if (const uint64_t units = state.fingerprint.weightUnits; units != 1 && units != device::kWeightUnitsFractional)
-      throw fail(fmt::format(
-          "/fingerprint/weight_units: {} {}", units,
-          prefix[0] < 3 ? "is a weighted film of an older spectrace (one-word counters), which this one cannot merge "
-                          "or resume: render it again"
-                        : fmt::format("is neither 1 nor {} (2^63)", device::kWeightUnitsFractional)));
-    for (const auto& r : header.at("ranges")) state.ranges.push_back({r.at(0).get<uint64_t>(), r.at(1).get<uint64_t>()});
-    const FilmFingerprint& f = state.fingerprint;
-    // The header's film shape sizes the arrays: checked against the bytes
-    // that follow before anything is allocated, so a header cannot ask for
-    // more memory than its file holds.
-    const uint64_t pixels = uint64_t(f.pixelsX) * f.pixelsY;
-    const uint64_t wordsPerPixel =
-        device::countersPerPixelOf(f.bins, device::filmChannelSetOf(f.exactColour, f.weightUnits != 1));
-    if (wordsPerPixel != 0 && pixels > (body - offset) / sizeof(uint64_t) / wordsPerPixel)
-      throw fail(fmt::format("its film ({} x {} pixels, {} bins) needs more values than the file holds", f.pixelsX,
-                             f.pixelsY, f.bins));
-    SpectralHistogram& h = state.histogram;
-    h = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
-    h.countedBeams = header.at("counted_beams").get<uint64_t>();
-    for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
-      const char* key = filmChannelName(c);
-      std::vector<uint64_t>* words = &h.channel(c);
-      const size_t n = header.at(key).get<size_t>();
-      if (n != words->size())
-        throw fail(fmt::format("{} holds {} values where its film has {}", key, n, words->size()));
-      if (n * sizeof(uint64_t) > body - offset) throw fail(fmt::format("{} runs past the end of the file", key));
-      if (n) std::memcpy(words->data(), bytes.data() + offset, n * sizeof(uint64_t));
-      offset += n * sizeof(uint64_t);
-    }
-  } catch (const json::exception& e) {
-    throw fail(fmt::format("bad header: {}", e.what()));
-  }
-  if (offset != body) throw fail("unexpected bytes after the arrays");
-  return state;
 }
 
 std::string fingerprintText(const FilmFingerprint& fingerprint) { return toJson(fingerprint).dump(); }
 
 FilmFingerprint fingerprintOfText(const std::string& text) {
-  try {
-    return fingerprintFromJson(json::parse(text), kVersion);
-  } catch (const json::exception& e) {
-    throw FilmStateError(fmt::format("not a film fingerprint: {}", e.what()));
-  }
+  jf::Source source;
+  source.file = "a film fingerprint";
+  source.raise = raiseStateError;
+  const json root = jf::parseJson(source, text);
+  if (!root.is_object()) source.fail("", fmt::format("must be an object (got {})", jf::describe(root)));
+  return fingerprintFromJson(HeaderFields{source, root, ""}, kVersion);
 }
 
 std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprint& b) {

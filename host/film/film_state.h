@@ -51,10 +51,10 @@ struct FilmFingerprint {
 
 struct FilmState {
   FilmFingerprint fingerprint;
-  std::vector<BeamRange> ranges;  // sorted, disjoint
+  std::vector<BeamRange> ranges;  // sorted, disjoint, none past 2^64, at most 2^64 - 1 beams in all
   SpectralHistogram histogram;    // the whole sensor and spectrum
 
-  uint64_t beams() const;
+  uint64_t beams() const;  // the ranges' beams (readers and merges refuse a sum past 2^64 - 1)
 };
 
 // The fingerprint of a film traced with `seed` from a scene file.
@@ -64,8 +64,11 @@ FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFi
 
 // Writes atomically (temporary file, fsync, rename). Throws FilmStateError.
 void writeFilmState(const std::filesystem::path& file, const FilmState& state);
-// Reads and checks the magic, version, checksum and array lengths; never
-// returns half a state. Throws FilmStateError naming the file.
+// Reads and checks a state (docs/state-format.md, "What a reader checks"):
+// the magic, version and header first, then the file's size against the
+// one the header implies, and only then the arrays and the checksum. Never
+// returns half a state. Throws FilmStateError naming the file and the
+// header field ("a.state: /ranges/2: ...").
 FilmState readFilmState(const std::filesystem::path& file);
 
 // The fingerprint as the JSON text of a state's header, and back (throws

@@ -33,6 +33,11 @@ fs::path tempFile(const std::string& name) {
   return dir / name;
 }
 
+std::string fileBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
 // An aimed disk light through a pinhole: fractional weights, so every array
 // (counts, colour sums, squared weights) is in use.
 Scene weightedScene() {
@@ -92,7 +97,10 @@ TEST(FilmState, DamagedFilesAreRefusedNeverHalfRead) {
       EXPECT_NE(std::string(e.what()).find(damaged.string()), std::string::npos) << "names the file: " << e.what();
     }
   };
-  refusedWith(bytes.substr(0, bytes.size() / 2), "checksum");
+  // A truncated file, or one with bytes after its end, is refused by its
+  // size, before its arrays are read; a flipped bit by its checksum.
+  refusedWith(bytes.substr(0, bytes.size() / 2), "it is truncated or has bytes after its end");
+  refusedWith(bytes + "x", "it is truncated or has bytes after its end");
   std::string flipped = bytes;
   flipped[flipped.size() / 2] ^= 0x10;
   refusedWith(flipped, "checksum");
@@ -143,7 +151,10 @@ TEST(FilmState, HeaderClaimingAHugeFilmIsRefusedBeforeAllocating) {
     readFilmState(file);
     ADD_FAILURE() << "accepted a state whose film does not fit its file";
   } catch (const FilmStateError& e) {
-    EXPECT_NE(std::string(e.what()).find("more values than the file holds"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/counts: 2 values, but its film (65535 x 65535 pixels, 99999 bins) has "
+                                         "429479327663775"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -295,11 +306,124 @@ std::string refusalOf(const FilmState& state) {
 
 constexpr uint64_t kHalf = uint64_t(1) << 63;
 
+// A 16 GiB sparse file is refused at once, naming the file, by its magic or
+// by the size its header implies, without being read whole (it used to be,
+// into memory, and fail with std::bad_alloc). Sparse: no disk space is used.
+TEST(FilmState, HugeFilesAreRefusedByMagicOrSizeBeforeTheyAreRead) {
+  constexpr uint64_t k16GiB = uint64_t(16) << 30;
+  const fs::path noMagic = tempFile("zeros.state");
+  std::ofstream(noMagic, std::ios::binary | std::ios::trunc).close();
+  fs::resize_file(noMagic, k16GiB);
+  EXPECT_EQ(readRefusal(noMagic), noMagic.string() + ": not a spectrace state file (no SPCTRSTA magic)");
+  fs::remove(noMagic);
+
+  const fs::path grown = tempFile("grown.state");
+  writeFilmState(grown, craftedState({{0, 10}}));
+  const uint64_t size = fs::file_size(grown);
+  fs::resize_file(grown, k16GiB);
+  const std::string refusal = readRefusal(grown);
+  fs::remove(grown);
+  EXPECT_EQ(refusal.rfind(grown.string() + ": the file is 17179869184 bytes, but its header implies " +
+                              std::to_string(size) + ": 16 (magic, version, header length) + ",
+                          0),
+            0u)
+      << refusal;
+  EXPECT_NE(refusal.find("8 x (24 /counts + 0 /colour_sums + 0 /squared_weight_sums) + 32 (SHA-256)"),
+            std::string::npos)
+      << refusal;
+}
+
+// A range may end at 2^64 exactly but not pass it: beam numbers do not
+// wrap to 0, where they would be beams another state already counts.
+TEST(FilmState, RangesPassing2To64AreRefused) {
+  EXPECT_EQ(refusalOf(craftedState({{UINT64_MAX - 9, 10}})), "");
+  const std::string wraps = refusalOf(craftedState({{10, 10}, {20, UINT64_MAX - 9}}));
+  EXPECT_NE(wraps.find("crafted.state: /ranges/1: [20, +18446744073709551606) runs past beam 2^64 - 1"),
+            std::string::npos)
+      << wraps;
+  EXPECT_NE(refusalOf(craftedState({{UINT64_MAX, 2}})).find("/ranges/0: [18446744073709551615, +2) runs past"),
+            std::string::npos);
+}
+
+// Two ranges of one state that share beams would count them twice.
+TEST(FilmState, OverlappingRangesInOneStateAreRefused) {
+  EXPECT_EQ(refusalOf(craftedState({{20, 5}, {0, 10}, {10, 10}})), "") << "touching ranges share no beam";
+  const std::string overlap = refusalOf(craftedState({{0, 10}, {20, 5}, {8, 4}}));
+  EXPECT_NE(overlap.find("crafted.state: /ranges/2: [8, +4) and /ranges/0 [0, +10) share beam 8"), std::string::npos)
+      << overlap;
+  const std::string same = refusalOf(craftedState({{5, 1}, {5, 1}}));
+  EXPECT_NE(same.find("/ranges/1: [5, +1) and /ranges/0 [5, +1) share beam 5"), std::string::npos) << same;
+  // A range ending at 2^64 is compared without overflow.
+  const std::string top = refusalOf(craftedState({{UINT64_MAX - 9, 10}, {UINT64_MAX - 20, 12}}));
+  EXPECT_NE(top.find("/ranges/1: [18446744073709551595, +12) and /ranges/0 [18446744073709551606, +10) share beam "
+                     "18446744073709551606"),
+            std::string::npos)
+      << top;
+}
+
+// An empty range is what a render stopped before its first beam writes, as
+// its only range; beside others it means nothing.
+TEST(FilmState, EmptyRangesAreReadOnlyAlone) {
+  EXPECT_EQ(refusalOf(craftedState({{7, 0}})), "");
+  const std::string beside = refusalOf(craftedState({{0, 5}, {5, 0}}));
+  EXPECT_NE(beside.find("/ranges/1: [5, +0) holds no beams; only a state of no beams at all has an empty range"),
+            std::string::npos)
+      << beside;
+}
+
+// FilmState::beams sums the ranges: disjoint ranges covering every beam
+// would sum to 2^64, which wraps to 0.
+TEST(FilmState, RangesOfMoreThan2To64Minus1BeamsAreRefused) {
+  const std::string all = refusalOf(craftedState({{0, kHalf}, {kHalf, kHalf}}));
+  EXPECT_NE(all.find("crafted.state: /ranges: the ranges hold more than 2^64 - 1 beams in all"), std::string::npos)
+      << all;
+  EXPECT_EQ(refusalOf(craftedState({{0, kHalf}, {kHalf, kHalf - 1}})), "");
+}
+
+// Each beam is counted at most once.
+TEST(FilmState, MoreCountedBeamsThanRangesAreRefused) {
+  EXPECT_EQ(refusalOf(craftedState({{0, 10}, {20, 5}}, 15)), "");
+  const std::string more = refusalOf(craftedState({{0, 10}, {20, 5}}, 16));
+  EXPECT_NE(more.find("crafted.state: /counted_beams: 16 beams counted, more than the 15 beams of /ranges"),
+            std::string::npos)
+      << more;
+}
+
+// A header field that is missing or of the wrong kind is named by its JSON
+// pointer (it used to be a bare nlohmann message).
+TEST(FilmState, BadHeaderFieldsAreNamed) {
+  const fs::path file = tempFile("fields.state");
+  writeFilmState(file, craftedState({{0, 10}}));
+  const std::string bytes = fileBytes(file);
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  const nlohmann::json header = nlohmann::json::parse(bytes.substr(16, length));
+  // `value` at `pointer`; null: the field left out.
+  auto refusalWith = [&](const std::string& pointer, const nlohmann::json& value) {
+    nlohmann::json edited = header;
+    const nlohmann::json::json_pointer at(pointer);
+    if (value.is_null()) edited.at(at.parent_pointer()).erase(at.back());
+    else edited[at] = value;
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << withHeader(bytes, edited, 2);
+    return readRefusal(file);
+  };
+  EXPECT_NE(refusalWith("/fingerprint/bins", "4").find("fields.state: /fingerprint/bins: must be an integer"),
+            std::string::npos);
+  EXPECT_NE(refusalWith("/ranges/0", {1, 2, 3}).find("fields.state: /ranges/0: must be [first, count]"),
+            std::string::npos);
+  EXPECT_NE(refusalWith("/ranges/0/1", -1).find("fields.state: /ranges/0/1: must be an integer"), std::string::npos);
+  EXPECT_NE(refusalWith("/counted_beams", nullptr).find("fields.state: /counted_beams: missing required field"),
+            std::string::npos);
+  EXPECT_NE(refusalWith("/fingerprint/compile_options/aim", 1)
+                .find("fields.state: /fingerprint/compile_options/aim: must be true or false"),
+            std::string::npos);
+}
+
 // The sum of two states' counters past 2^64 - 1 would wrap to a small count
 // (an image that was bright becomes black): refused, naming the channel, the
 // pixel, the bin and the files.
 TEST(FilmState, MergedCountersPassing2To64AreRefusedNamingTheCounter) {
-  FilmState a = craftedState({{0, 10}}, 0, true, 16), b = craftedState({{10, 10}}, 0, true, 16);
+  FilmState a = craftedState({{0, 10}}, 0, true), b = craftedState({{10, 10}}, 0, true);  // one-word counters
   const size_t pixel = 1 * 3 + 2;  // (2, 1)
   a.histogram.at(pixel, 3) = UINT64_MAX - 4;
   b.histogram.at(pixel, 3) = 4;
