@@ -1,5 +1,6 @@
 # Helpers of the CLI test scripts (cli_state.cmake, cli_mpi.cmake,
-# outputs_never_inputs.cmake, resume_refusals.cmake, merge_messages.cmake),
+# outputs_never_inputs.cmake, resume_refusals.cmake, merge_messages.cmake,
+# state_refusals.cmake),
 # included by them; COMPARE is tools/exr_pixels_equal.
 
 # Runs a command; fails the test with its output unless it exits 0.
@@ -19,9 +20,13 @@ function(expect_same a b)
 endfunction()
 
 # Fails the test (naming the case `name`) unless the command exits 2 (bad
-# input) with output matching `regex`.
+# input) with output matching `regex`, within `refuse_timeout` seconds when
+# the caller sets it (240 otherwise).
 function(expect_refused name regex)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+  if(NOT DEFINED refuse_timeout)
+    set(refuse_timeout 240)
+  endif()
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT ${refuse_timeout})
   if(NOT rc EQUAL 2)
     message(FATAL_ERROR "${name}: exit code ${rc}, expected 2:\n${out}${err}")
   endif()
