@@ -327,6 +327,78 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
                std::string(name()) + " plate, connected vs analog");
 }
 
+// --- 1b. the lit grey square matched with pbrt-v4 ---------------------------------
+//
+// scenes/bench/fom_lit_grey.json at 32 x 32 pixels: a grey Lambertian square
+// (rho 0.5, z = 1.1 m) lit by a 1 W spot 0.25 m above the pinhole (25 deg
+// half angle, uniform in solid angle: I = Phi / (2 pi (1 - cos 25 deg))),
+// seen through a 25 um pinhole at 24 mm. Its closed form: the spot's
+// irradiance on the square E = I cos / r^2, times rho / pi, times the
+// pinhole's factor pi r_a^2 cos^4(theta) / d^2 on the sensor (the aperture's
+// own extent changes it by ~1e-6 here), averaged over the pixel (Gauss-
+// Legendre), in W/m^2 over the whole spectrum. The camera connections are worth ~1e-10 of a beam each, which
+// the film must keep exactly (device_shared.h, kWeightUnitsFractional).
+// Checked where the whole pixel sees the square inside the spot's cone.
+// (The scene is symmetric in x, so the camera frame's x sense is moot.)
+TEST_P(OpticsReference, LitGreySquareMatchesItsClosedForm) {
+  Scene scene = loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/bench/fom_lit_grey.json");
+  scene.camera.pixelsX = scene.camera.pixelsY = 32;
+  // All of D65's table (300 to 830 nm), so the image holds the spot's whole
+  // 1 W (the bench's 360 to 830 nm leaves out the ultraviolet's share).
+  scene.spectrum = {300.0, 830.0, 53};
+  const Light& spot = scene.lights.at(0);
+  const double d = pinholeOf(scene.camera)->distanceM, ra = pinholeOf(scene.camera)->radiusM;
+  const double z = 1.1, half = 0.3, rho = 0.5;
+  const double cosCone = std::cos(spot.coneHalfAngleDeg * kPi / 180.0);
+  const double intensity = spot.powerW / (2.0 * kPi * (1.0 - cosCone));
+  const glm::dvec3 axis = glm::normalize(spot.direction);
+  // The square's point seen from sensor point (x, y) through the aperture's centre.
+  auto seen = [&](double x, double y) { return glm::dvec3(-x * (z - d) / d, -y * (z - d) / d, z); };
+  auto lit = [&](const glm::dvec3& p) {
+    return std::abs(p.x) < half && std::abs(p.y) < half && glm::dot(glm::normalize(p - spot.position), axis) > cosCone;
+  };
+  const Quadrature q = gaussLegendre01(4);
+  std::vector<double> expected;
+  std::vector<size_t> pixels;
+  for (int row = 0; row < scene.camera.pixelsY; ++row)
+    for (int col = 0; col < scene.camera.pixelsX; ++col) {
+      const SensorRect r = pixelOnSensor(scene.camera, col, row);
+      // Whole pixels only, with a margin of a tenth of a pixel.
+      const double mx = 0.1 * (r.x2 - r.x1), my = 0.1 * (r.y2 - r.y1);
+      bool inside = true;
+      for (double x : {r.x1 - mx, r.x2 + mx})
+        for (double y : {r.y1 - my, r.y2 + my}) inside = inside && lit(seen(x, y));
+      if (!inside) continue;
+      double sum = 0.0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          const double x = r.x1 + (r.x2 - r.x1) * q.x[i], y = r.y1 + (r.y2 - r.y1) * q.x[j];
+          const glm::dvec3 p = seen(x, y), toSpot = spot.position - p;
+          const double r2 = glm::dot(toSpot, toSpot);
+          const double irradiance = intensity * (-toSpot.z / std::sqrt(r2)) / r2;  // the square faces -z
+          const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
+          sum += q.w[i] * q.w[j] * rho / kPi * irradiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
+        }
+      expected.push_back(sum);
+      pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
+    }
+  ASSERT_GT(pixels.size(), 300u) << "most of the image is the lit square";
+
+  const uint64_t kBeams = testing::scaledBeams(GetParam() == DeviceChoice::Gpu ? 2'000'000 : 4'000'000, 400'000);
+  const RenderResult result = renderHere(scene, kBeams, 21);
+  ASSERT_TRUE(result.plan.film.weighted());
+  std::vector<float> measured;
+  std::vector<double> sigma;
+  for (size_t p : pixels) {
+    measured.push_back(result.image.irradiance[p]);
+    sigma.push_back(double(result.image.irradianceError[p]));
+    ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+  }
+  // A beam makes one count at most (one diffuse vertex, and the spot cannot
+  // reach the aperture), so the film's own estimate is the standard error.
+  expectPixels(measured, expected, sigma, std::string(name()) + " lit grey square");
+}
+
 // --- 2. plane mirror -------------------------------------------------------------
 //
 // Bare sensor 20 x 20 mm (8 x 8) at z = 0; the point light at (30, 2, -3) mm
