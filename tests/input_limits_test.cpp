@@ -83,9 +83,11 @@ TEST_F(InputLimits, DeepJsonFailsAtTheDepthLimitNotAfterEatingMemory) {
   EXPECT_THAT(errorOf([&] { json_fields::parseJson(source, over); }), HasSubstr("nest more than 64"));
   // Job files go through the same parser.
   const fs::path jobs = write("deep.jsonl", "{\"scene\": " + std::string(1000, '[') + std::string(1000, ']') + "}\n");
-  const auto entries = readJobFile(jobs);
-  ASSERT_EQ(entries.size(), 1u);
-  EXPECT_THAT(entries[0].error, HasSubstr("nest more than 64"));
+  JobReader reader(jobs);
+  ASSERT_EQ(reader.total(), 1u);
+  const auto entry = reader.next();
+  ASSERT_TRUE(entry);
+  EXPECT_THAT(entry->error, HasSubstr("nest more than 64"));
 }
 
 TEST_F(InputLimits, OnlyRegularFilesWithinTheSizeLimitAreRead) {
@@ -96,7 +98,7 @@ TEST_F(InputLimits, OnlyRegularFilesWithinTheSizeLimitAreRead) {
   // Refused without opening it (opening a FIFO with no writer would block).
   EXPECT_THAT(errorOf([&] { loadScene(fifo); }), HasSubstr("is a pipe (FIFO), not a scene file"));
   EXPECT_THAT(errorOf([&] { loadCsvSpd(fifo); }), HasSubstr("is a pipe (FIFO), not a SPD file"));
-  EXPECT_THAT(errorOf([&] { readJobFile(fifo); }), HasSubstr("is a pipe (FIFO), not a job file"));
+  EXPECT_THAT(errorOf([&] { JobReader{fifo}; }), HasSubstr("is a pipe (FIFO), not a job file"));
   EXPECT_THAT(errorOf([] { loadCsvSpd("/dev/zero"); }), HasSubstr("/dev/zero: is a device"));
   // A sparse file one byte over the limit: refused by its size, unread.
   const fs::path big = dir / "big.json";

@@ -1,10 +1,12 @@
 // spectrace batch: the jobs of a job file, rendered on one device by a
-// Session; a bad job is reported and the others go on.
-#include <chrono>
+// Session; a bad job is reported and the others go on. The job file is
+// read and counted first (JobReader), then each job is built as it runs.
 #include <cstdio>
 #include <fmt/format.h>
+#include <functional>
 #include <future>
 #include <optional>
+#include <string>
 #include <unistd.h>
 #include <vector>
 
@@ -37,118 +39,166 @@ void printTable(const std::vector<Row>& rows) {
   for (const auto& r : rows) print(r);
 }
 
-}  // namespace
+// One batch run: jobs rendered one after another on one session, a table
+// row each. A job is written while the next one traces.
+class BatchRun {
+ public:
+  BatchRun(const BatchCommand& command, const std::atomic<bool>& cancel, uint64_t total)
+      : command_(command), cancel_(cancel), total_(total), live_(!command.quiet && isatty(STDERR_FILENO)),
+        session_(parseDeviceChoice(command.device), logger(command.quiet), command.pipelineCache) {}
 
-int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
-  std::vector<JobEntry> entries;
-  try {
-    entries = readJobFile(command.jobs, command.outDir);
-  } catch (const JobFileError& e) {
-    std::fprintf(stderr, "spectrace: error: %s\n", e.what());
-    return 2;
-  }
-  const bool live = !command.quiet && isatty(STDERR_FILENO);
-  std::function<void(const std::string&)> log;
-  if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
-  const Session session(parseDeviceChoice(command.device), log, command.pipelineCache);
+  // Whether no further job may start (interrupted, or --fail-fast after a failure).
+  bool stopped() const { return cancel_.load() || (failed_ && command_.failFast); }
+  void run(JobEntry& entry);
+  // After the last job started: its writing, a row for the `notRun` jobs
+  // left, the table. The exit code.
+  int finish(uint64_t notRun);
 
-  std::vector<Row> rows;
-  size_t failed = 0, rendered = 0, skipped = 0;
-  const size_t total = entries.size();
-  auto fail = [&](Row& row, const std::string& message) {
-    std::fprintf(stderr, "%sspectrace: error: %s\n", live ? "\r\033[K" : "", message.c_str());
-    row.status = "FAILED";
-    ++failed;
-  };
+ private:
   // The job being written while the next one traces (Session::renderOverlapped):
   // its row is finished, and its errors reported against it, once its writing ends.
   struct Written {
-    size_t index;
+    size_t row;
     std::shared_future<RenderResult> result;
     uint64_t beams;
   };
-  std::optional<Written> writing;
-  auto collect = [&]() {
-    if (!writing) return;
-    const size_t i = writing->index;
-    Row& row = rows[i];
-    const JobEntry& entry = entries[i];
-    try {
-      const RenderResult& result = writing->result.get();
-      row.seconds = fmt::format("{:.2f}", result.wallSeconds);
-      row.rate = fmt::format("{:.1f}", double(result.beamsTraced) / result.wallSeconds * 1e-6);
-      if (result.beamsTraced < writing->beams) {
-        row.status = "interrupted";
-        ++failed;
-      } else {
-        row.status = "ok";
-        ++rendered;
-      }
-      if (!command.quiet)
-        std::fprintf(stderr, "%sspectrace: [%zu/%zu] %s -> %s: %llu beams in %s s (%s Mbeam/s) on %s\n",
-                     live ? "\r\033[K" : "", i + 1, total, entry.where.c_str(), row.output.c_str(),
-                     (unsigned long long)result.beamsTraced, row.seconds.c_str(), row.rate.c_str(),
-                     result.deviceName.c_str());
-    } catch (const OutputError& e) {
-      fail(row, fmt::format("{}: /output: {}", entry.where, e.what()));
-    } catch (const std::exception& e) {
-      fail(row, fmt::format("{}: {}", entry.where, e.what()));
-    }
-    writing.reset();
-  };
-  for (size_t i = 0; i < total; ++i) {
-    JobEntry& entry = entries[i];
-    rows.push_back(Row{entry.where, entry.output.string(), entry.beams ? std::to_string(*entry.beams) : "-", "-", "-", ""});
-    std::string error;
-    if (cancel.load()) {
-      rows[i].status = "cancelled";
-    } else if (!entry.job) {
-      error = entry.error;
-    } else if (command.skipExisting && outputIsComplete(entry.job->output, entry.job->beamCount())) {
-      rows[i].status = "skipped (complete)";
-      ++skipped;
-      if (!command.quiet) std::fprintf(stderr, "spectrace: [%zu/%zu] %s: skipped, %s is complete\n", i + 1, total,
-                                       entry.where.c_str(), rows[i].output.c_str());
+
+  static std::function<void(const std::string&)> logger(bool quiet) {
+    if (quiet) return {};
+    return [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+  }
+  void fail(Row& row, const std::string& message) {
+    std::fprintf(stderr, "%sspectrace: error: %s\n", live_ ? "\r\033[K" : "", message.c_str());
+    row.status = "FAILED";
+    ++failed_;
+  }
+  void collect();
+  std::string render(JobEntry& entry, size_t row);
+
+  const BatchCommand& command_;
+  const std::atomic<bool>& cancel_;
+  const uint64_t total_;
+  const bool live_;
+  const Session session_;
+  std::vector<Row> rows_;
+  size_t failed_ = 0, rendered_ = 0, skipped_ = 0;
+  std::optional<Written> writing_;
+};
+
+void BatchRun::collect() {
+  if (!writing_) return;
+  const size_t i = writing_->row;
+  Row& row = rows_[i];
+  try {
+    const RenderResult& result = writing_->result.get();
+    row.seconds = fmt::format("{:.2f}", result.wallSeconds);
+    row.rate = fmt::format("{:.1f}", double(result.beamsTraced) / result.wallSeconds * 1e-6);
+    if (result.beamsTraced < writing_->beams) {
+      row.status = "interrupted";
+      ++failed_;
     } else {
-      RenderJob& job = *entry.job;
-      job.png = command.png;
-      job.loop.cancel = &cancel;
-      job.outputs.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
-      if (live)
-        job.loop.onProgress = [&, i](uint64_t done, uint64_t all) {
-          std::fprintf(stderr, "\r\033[Kspectrace: [%zu/%zu] %s: %5.1f%%", i + 1, total, entries[i].where.c_str(),
-                       100.0 * double(done) / double(all));
-        };
-      try {
-        checkOutputPath(job, {command.jobs});  // the job file is an input too
-        auto result = session.renderOverlapped(job);
-        collect();  // the previous job: written by now
-        writing = Written{i, std::move(result), job.beamCount()};
-        // --fail-fast must know this job's outcome before the next one starts.
-        if (command.failFast) collect();
-      } catch (const OutputError& e) {
-        error = fmt::format("{}: /output: {}", entry.where, e.what());
-      } catch (const std::exception& e) {
-        error = fmt::format("{}: {}", entry.where, e.what());
-      }
+      row.status = "ok";
+      ++rendered_;
     }
-    if (!error.empty()) {
-      collect();  // the previous job's report comes first
-      fail(rows[i], error);
-    }
-    if (failed && command.failFast) {
-      for (size_t j = i + 1; j < total; ++j)
-        rows.push_back(Row{entries[j].where, entries[j].output.string(), "-", "-", "-", "not run (--fail-fast)"});
-      break;
-    }
+    if (!command_.quiet)
+      std::fprintf(stderr, "%s\n",
+                   fmt::format("{}spectrace: [{}/{}] {} -> {}: {} beams in {} s ({} Mbeam/s) on {}", live_ ? "\r\033[K" : "",
+                               i + 1, total_, row.job, row.output, result.beamsTraced, row.seconds, row.rate,
+                               result.deviceName)
+                       .c_str());
+  } catch (const OutputError& e) {
+    fail(row, fmt::format("{}: /output: {}", row.job, e.what()));
+  } catch (const std::exception& e) {
+    fail(row, fmt::format("{}: {}", row.job, e.what()));
   }
+  writing_.reset();
+}
+
+// Starts the job's render (its writing goes on while the next job traces);
+// the error that kept it from starting, if any.
+std::string BatchRun::render(JobEntry& entry, size_t i) {
+  RenderJob& job = *entry.job;
+  job.png = command_.png;
+  job.loop.cancel = &cancel_;
+  job.outputs.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
+  if (live_)
+    job.loop.onProgress = [this, i, where = entry.where](uint64_t done, uint64_t all) {
+      std::fprintf(stderr, "\r\033[K%s", fmt::format("spectrace: [{}/{}] {}: {:5.1f}%", i + 1, total_, where,
+                                                    100.0 * double(done) / double(all)).c_str());
+    };
+  try {
+    checkOutputPath(job, {command_.jobs});  // the job file is an input too
+    auto result = session_.renderOverlapped(job);
+    collect();  // the previous job: written by now
+    writing_ = Written{i, std::move(result), job.beamCount()};
+    // --fail-fast must know this job's outcome before the next one starts.
+    if (command_.failFast) collect();
+  } catch (const OutputError& e) {
+    return fmt::format("{}: /output: {}", entry.where, e.what());
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", entry.where, e.what());
+  }
+  return {};
+}
+
+void BatchRun::run(JobEntry& entry) {
+  const size_t i = rows_.size();
+  rows_.push_back(Row{entry.where, entry.output.string(), entry.beams ? std::to_string(*entry.beams) : "-", "-", "-", ""});
+  std::string error;
+  if (!entry.job) {
+    error = entry.error;
+  } else if (command_.skipExisting && outputIsComplete(entry.job->output, entry.job->beamCount())) {
+    rows_[i].status = "skipped (complete)";
+    ++skipped_;
+    if (!command_.quiet)
+      std::fprintf(stderr, "%s\n", fmt::format("spectrace: [{}/{}] {}: skipped, {} is complete", i + 1, total_,
+                                               entry.where, rows_[i].output).c_str());
+  } else {
+    error = render(entry, i);
+  }
+  if (!error.empty()) {
+    collect();  // the previous job's report comes first
+    fail(rows_[i], error);
+  }
+}
+
+int BatchRun::finish(uint64_t notRun) {
   collect();
-  if (!command.quiet) {
-    printTable(rows);
-    std::printf("%zu jobs: %zu rendered, %zu skipped, %zu failed\n", total, rendered, skipped, failed);
+  if (notRun)  // one row for them all: a job is built only when it is about to run
+    rows_.push_back(Row{fmt::format("the other {} job{}", notRun, notRun == 1 ? "" : "s"), "-", "-", "-", "-",
+                        cancel_.load() ? "cancelled" : "not run (--fail-fast)"});
+  if (!command_.quiet) {
+    printTable(rows_);
+    std::printf("%s\n", fmt::format("{} jobs: {} rendered, {} skipped, {} failed", total_, rendered_, skipped_,
+                                    failed_).c_str());
   }
-  if (cancel.load()) return 130;
-  return failed ? 2 : 0;
+  if (cancel_.load()) return 130;
+  return failed_ ? 2 : 0;
+}
+
+}  // namespace
+
+int runBatch(const BatchCommand& command, const std::atomic<bool>& cancel) {
+  std::optional<JobReader> reader;
+  try {
+    reader.emplace(command.jobs, JobReaderOptions{command.outDir, kMaxJobsPerFile, &cancel});
+  } catch (const JobFileError& e) {
+    std::fprintf(stderr, "spectrace: error: %s\n", e.what());
+    return 2;
+  } catch (const JobFileCancelled& e) {
+    if (!command.quiet) std::fprintf(stderr, "spectrace: %s; nothing was rendered\n", e.what());
+    return 130;
+  }
+  BatchRun batch(command, cancel, reader->total());
+  uint64_t started = 0;
+  // Jobs are built one at a time, as they come to run.
+  while (!batch.stopped()) {
+    std::optional<JobEntry> entry = reader->next();
+    if (!entry) break;
+    batch.run(*entry);
+    ++started;
+  }
+  return batch.finish(reader->total() - started);
 }
 
 }  // namespace spectrace::cli

@@ -1,9 +1,9 @@
 #include "session/job_file.h"
 
-#include <fstream>
-#include <map>
-#include <set>
-#include <sstream>
+#include <algorithm>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -64,7 +64,7 @@ void applyOverride(const jf::Source& c, const std::string& field, Json& scene, c
 }
 
 // Output pattern: {index} and {<pointer>} replaced; "{{" and "}}" are braces.
-std::string expandPattern(const jf::Source& c, const std::string& pattern, size_t index, const Json& scene) {
+std::string expandPattern(const jf::Source& c, const std::string& pattern, uint64_t index, const Json& scene) {
   std::string out;
   for (size_t i = 0; i < pattern.size(); ++i) {
     const char ch = pattern[i];
@@ -93,150 +93,355 @@ std::string expandPattern(const jf::Source& c, const std::string& pattern, size_
   return out;
 }
 
-struct Line {
-  std::string text;
-  size_t number;
+using Sweep = std::vector<std::pair<std::string, std::vector<Json>>>;
+
+// What a line says, before its scene is read.
+struct LineSpec {
+  jf::Source c;  // names the line ("jobs.jsonl:3") in messages
+  Json job;
+  fs::path scenePath;
+  std::optional<uint64_t> beams, seed;
+  std::optional<std::string> outputPattern;
+  Sweep sweep;
+  std::optional<uint64_t> count;  // the sweep's combinations; none when they pass 2^64 - 1
 };
 
-// The jobs of one line (several with a sweep).
-void readLine(const fs::path& file, const Line& line, const std::optional<fs::path>& outDir,
-              std::vector<JobEntry>& entries) {
-  const std::string where = fmt::format("{}:{}", file.string(), line.number);
-  jf::Source c;
-  c.file = where;
+// The sweep's keys in the order written (nlohmann::json sorts them).
+Sweep readSweep(const jf::Source& c, const Json& sweep, const std::string& text) {
+  if (!sweep.is_object() || sweep.empty())
+    c.fail("/sweep", fmt::format("must be an object of JSON pointer: [values...] (got {})", jf::describe(sweep)));
+  Sweep out;
+  const auto ordered = nlohmann::ordered_json::parse(text, nullptr, true, true);
+  for (const auto& [key, values] : ordered.at("sweep").items()) {
+    const std::string field = jf::child("/sweep", key);
+    if (!values.is_array() || values.empty())
+      c.fail(field, fmt::format("must be a non-empty array of values (got {})", jf::describe(Json::parse(values.dump()))));
+    std::vector<Json> list;
+    list.reserve(values.size());
+    for (const auto& v : values) list.push_back(Json::parse(v.dump()));
+    out.emplace_back(key, std::move(list));
+  }
+  return out;
+}
+
+// The number of combinations, or none when it passes 2^64 - 1.
+std::optional<uint64_t> combinationsOf(const Sweep& sweep) {
+  uint64_t count = 1;
+  for (const auto& [key, values] : sweep)
+    if (__builtin_mul_overflow(count, uint64_t(values.size()), &count)) return std::nullopt;
+  return count;
+}
+
+// "1001 x 1000" (the first few factors of a long product).
+std::string factorsOf(const Sweep& sweep) {
+  std::string out;
+  for (size_t k = 0; k < sweep.size() && k < 8; ++k) out += fmt::format("{}{}", k ? " x " : "", sweep[k].second.size());
+  if (sweep.size() > 8) out += fmt::format(" x ... ({} keys)", sweep.size());
+  return out;
+}
+
+// Parses and checks one line up to (not including) its scene.
+LineSpec parseLine(const fs::path& file, size_t number, const std::string& text) {
+  LineSpec spec;
+  jf::Source& c = spec.c;
+  c.file = fmt::format("{}:{}", file.string(), number);
   c.dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   c.raise = raiseJobError;
-  const size_t firstEntry = entries.size();
-  try {
-    const Json job = jf::parseJson(c, line.text);
-    if (!job.is_object()) c.fail("", fmt::format("a job must be a JSON object (got {})", jf::describe(job)));
-    jf::checkObject(c, job, "", {"scene", "output", "beams", "seed", "set", "sweep"}, "a job");
-    const std::string sceneName = jf::getString(c, jf::require(c, job, "", "scene", " (the scene file)"), "/scene");
-    const bool relative = !fs::path(sceneName).is_absolute();
-    const fs::path scenePath = (relative ? c.dir / sceneName : fs::path(sceneName)).lexically_normal();
-    // The path as the line gives it, and where it was looked for: relative
-    // to the job file's folder, not to the working folder.
-    std::error_code missing;
-    if (fs::status(scenePath, missing).type() == fs::file_type::not_found)
-      c.fail("/scene", fmt::format("{}: scene file not found (looked for {}{})", sceneName,
-                                   fs::absolute(scenePath, missing).lexically_normal().string(),
-                                   relative ? ", relative to the job file's folder" : ""));
-    std::optional<uint64_t> beams, seed;
-    if (auto* x = jf::find(job, "beams")) beams = jf::getU64(c, *x, "/beams", 1);
-    if (auto* x = jf::find(job, "seed")) seed = jf::getU64(c, *x, "/seed", 0);
-    std::optional<std::string> outputPattern;
-    if (auto* x = jf::find(job, "output")) outputPattern = jf::getString(c, *x, "/output");
-
-    // The sweep's keys in the order written (nlohmann::json sorts them).
-    std::vector<std::pair<std::string, std::vector<Json>>> sweep;
-    if (auto* x = jf::find(job, "sweep")) {
-      if (!x->is_object() || x->empty())
-        c.fail("/sweep", fmt::format("must be an object of JSON pointer: [values...] (got {})", jf::describe(*x)));
-      const auto ordered = nlohmann::ordered_json::parse(line.text, nullptr, true, true);
-      for (const auto& [key, values] : ordered.at("sweep").items()) {
-        const std::string field = jf::child("/sweep", key);
-        if (!values.is_array() || values.empty())
-          c.fail(field, fmt::format("must be a non-empty array of values (got {})", jf::describe(Json::parse(values.dump()))));
-        std::vector<Json> list;
-        for (const auto& v : values) list.push_back(Json::parse(v.dump()));
-        sweep.emplace_back(key, std::move(list));
-      }
-      bool named = outputPattern && outputPattern->find("{index}") != std::string::npos;
-      for (const auto& [key, values] : sweep)
-        if (outputPattern && outputPattern->find("{" + key + "}") != std::string::npos) named = true;
-      if (!named)
-        c.fail("/output", "a sweep needs an output pattern with {index} or a swept {/pointer} (or the outputs would collide)");
-    }
-
-    // The scene, read once; each job overrides a copy.
-    Json base;
-    try {
-      base = readSceneJson(scenePath);
-    } catch (const SceneError& e) {
-      c.fail("/scene", e.what());
-    }
-    if (auto* x = jf::find(job, "set")) {
-      if (!x->is_object()) c.fail("/set", fmt::format("must be an object of JSON pointer: value (got {})", jf::describe(*x)));
-      for (const auto& [key, value] : x->items()) applyOverride(c, jf::child("/set", key), base, key, value, scenePath);
-    }
-
-    size_t count = 1;
-    for (const auto& [key, values] : sweep) count *= values.size();
-    for (size_t index = 0; index < count; ++index) {
-      JobEntry entry;
-      entry.where = sweep.empty() ? where : fmt::format("{} [{}]", where, index);
-      entry.beams = beams;
-      jf::Source jc = c;
-      jc.file = entry.where;
-      try {
-        Json scene = base;
-        size_t rest = index;
-        std::vector<size_t> digits(sweep.size());
-        for (size_t k = sweep.size(); k-- > 0;) {
-          digits[k] = rest % sweep[k].second.size();
-          rest /= sweep[k].second.size();
-        }
-        for (size_t k = 0; k < sweep.size(); ++k)
-          applyOverride(jc, jf::child("/sweep", sweep[k].first), scene, sweep[k].first, sweep[k].second[digits[k]],
-                        scenePath);
-        const std::string outputName =
-            outputPattern ? expandPattern(jc, *outputPattern, index, scene) : scenePath.stem().string() + ".exr";
-        fs::path output = outputName;
-        if (output.is_relative()) output = outDir ? *outDir / output : c.dir / output;
-        entry.output = output.lexically_normal();
-        for (size_t e = 0; e < entries.size(); ++e)
-          if (entries[e].output == entry.output)
-            jc.fail("/output", fmt::format("{} is also the output of {}", entry.output.string(), entries[e].where));
-        RenderJob renderJob;
-        try {
-          renderJob.scene = parseSceneJson(scene, scenePath);
-        } catch (const SceneError& e) {
-          jc.fail(sweep.empty() && !jf::find(job, "set") ? "/scene" : "/scene (with the job's overrides)", e.what());
-        }
-        renderJob.output = entry.output;
-        renderJob.beams = beams;
-        renderJob.seed = seed;
-        entry.beams = renderJob.beamCount();
-        entry.job = std::move(renderJob);
-      } catch (const JobError& e) {
-        entry.error = e.what();
-      }
-      entries.push_back(std::move(entry));
-    }
-  } catch (const JobError& e) {
-    entries.resize(firstEntry);
-    JobEntry entry;
-    entry.where = where;
-    entry.error = e.what();
-    entries.push_back(std::move(entry));
-  } catch (const nlohmann::json::exception& e) {
-    entries.resize(firstEntry);
-    JobEntry entry;
-    entry.where = where;
-    entry.error = fmt::format("{}: {}", where, e.what());
-    entries.push_back(std::move(entry));
+  spec.job = jf::parseJson(c, text);
+  const Json& job = spec.job;
+  if (!job.is_object()) c.fail("", fmt::format("a job must be a JSON object (got {})", jf::describe(job)));
+  jf::checkObject(c, job, "", {"scene", "output", "beams", "seed", "set", "sweep"}, "a job");
+  const std::string sceneName = jf::getString(c, jf::require(c, job, "", "scene", " (the scene file)"), "/scene");
+  const bool relative = !fs::path(sceneName).is_absolute();
+  spec.scenePath = (relative ? c.dir / sceneName : fs::path(sceneName)).lexically_normal();
+  // The path as the line gives it, and where it was looked for: relative
+  // to the job file's folder, not to the working folder.
+  std::error_code missing;
+  if (fs::status(spec.scenePath, missing).type() == fs::file_type::not_found)
+    c.fail("/scene", fmt::format("{}: scene file not found (looked for {}{})", sceneName,
+                                 fs::absolute(spec.scenePath, missing).lexically_normal().string(),
+                                 relative ? ", relative to the job file's folder" : ""));
+  if (auto* x = jf::find(job, "beams")) spec.beams = jf::getU64(c, *x, "/beams", 1);
+  if (auto* x = jf::find(job, "seed")) spec.seed = jf::getU64(c, *x, "/seed", 0);
+  if (auto* x = jf::find(job, "output")) spec.outputPattern = jf::getString(c, *x, "/output");
+  if (auto* x = jf::find(job, "sweep")) {
+    spec.sweep = readSweep(c, *x, text);
+    const auto& pattern = spec.outputPattern;
+    bool named = pattern && pattern->find("{index}") != std::string::npos;
+    for (const auto& [key, values] : spec.sweep)
+      if (pattern && pattern->find("{" + key + "}") != std::string::npos) named = true;
+    if (!named)
+      c.fail("/output", "a sweep needs an output pattern with {index} or a swept {/pointer} (or the outputs would collide)");
   }
+  spec.count = combinationsOf(spec.sweep);
+  return spec;
+}
+
+JobFileError tooManyJobs(const std::string& where, uint64_t maxJobs) {
+  return JobFileError(fmt::format("{}: the job file holds more than {} jobs, the most a job file may hold; split it "
+                                  "over several job files", where, maxJobs));
+}
+
+// Refuses the line when its jobs would bring the file past `maxJobs`
+// (`before`: the jobs of the lines above, at most maxJobs).
+void checkJobCount(const LineSpec& spec, uint64_t before, uint64_t maxJobs) {
+  if (spec.count && *spec.count <= maxJobs - before) return;
+  if (spec.sweep.empty()) throw tooManyJobs(spec.c.file, maxJobs);
+  const std::string count = spec.count ? fmt::format("{} combinations", *spec.count) : "2^64 or more combinations";
+  const std::string earlier = before ? fmt::format(" after {} job{} on the lines above", before, before == 1 ? "" : "s") : "";
+  throw JobFileError(fmt::format("{}: /sweep: {} ({}){}; a job file may hold at most {} jobs; split the sweep over "
+                                 "several job files", spec.c.file, count, factorsOf(spec.sweep), earlier, maxJobs));
+}
+
+// Scene files by path, each read once and held (up to kSceneCacheBytes).
+class SceneCache {
+ public:
+  std::shared_ptr<const Json> get(const jf::Source& c, const fs::path& path) {
+    auto it = held_.find(path.string());
+    if (it == held_.end()) it = read(path);
+    if (!it->second.json) c.fail("/scene", it->second.error);
+    return it->second.json;
+  }
+  uint64_t reads() const { return reads_; }
+
+ private:
+  struct Held {
+    std::shared_ptr<const Json> json;
+    std::string error;  // when json is null
+  };
+  std::unordered_map<std::string, Held>::iterator read(const fs::path& path) {
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    if (ec == std::error_code() && bytes_ + size > kSceneCacheBytes) {
+      held_.clear();
+      bytes_ = 0;
+    }
+    Held held;
+    try {
+      held.json = std::make_shared<const Json>(readSceneJson(path));
+      if (ec == std::error_code()) bytes_ += size;
+    } catch (const SceneError& e) {
+      held.error = e.what();
+    }
+    ++reads_;
+    return held_.emplace(path.string(), std::move(held)).first;
+  }
+  std::unordered_map<std::string, Held> held_;
+  uint64_t bytes_ = 0, reads_ = 0;
+};
+
+// The line's scene with its "set" overrides applied.
+std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes) {
+  const jf::Source& c = spec.c;
+  std::shared_ptr<const Json> scene = scenes.get(c, spec.scenePath);
+  const Json* set = jf::find(spec.job, "set");
+  if (!set) return scene;
+  if (!set->is_object()) c.fail("/set", fmt::format("must be an object of JSON pointer: value (got {})", jf::describe(*set)));
+  auto copy = std::make_shared<Json>(*scene);
+  for (const auto& [key, value] : set->items()) applyOverride(c, jf::child("/set", key), *copy, key, value, spec.scenePath);
+  return copy;
 }
 
 }  // namespace
 
-std::vector<JobEntry> readJobFile(const fs::path& file, const std::optional<fs::path>& outDir) {
+struct JobReader::State {
+  // A job line of the file, as the first pass found it.
+  struct Planned {
+    size_t begin, size;  // its text within `bytes`
+    size_t number;       // its line number
+    uint64_t count;      // its jobs (1 for a bad line)
+  };
+  // The job that first claimed an output (its where, rebuilt for messages).
+  struct Owner {
+    size_t number;
+    uint64_t index;
+    bool swept;
+  };
+  // The line whose jobs next() is yielding.
+  struct Current {
+    size_t number;
+    std::string where;
+    std::optional<LineSpec> spec;        // none for a bad line
+    std::shared_ptr<const Json> base;    // the scene with "set" applied
+    std::string error;                   // for a bad line
+    uint64_t count = 1, index = 0;
+    bool swept = false;
+  };
+
+  fs::path file;
+  JobReaderOptions options;
   std::string bytes;
+  std::vector<Planned> lines;
+  std::unordered_map<size_t, std::string> errors;  // the bad lines' messages, by index in `lines`
+  uint64_t total = 0;
+  SceneCache scenes;
+  size_t nextLine = 0;
+  std::optional<Current> current;
+  std::unordered_map<std::string, Owner> outputs;  // by output
+
+  std::string whereOf(size_t number) const { return fmt::format("{}:{}", file.string(), number); }
+  void plan(size_t begin, size_t size, size_t number);
+  Current open(size_t line);
+  JobEntry entryOf(const Current& line, uint64_t index);
+  void buildJob(const Current& line, uint64_t index, JobEntry& entry);
+  fs::path claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene);
+};
+
+// The first pass over one job line: checked, its scene read (once per
+// file), its jobs counted but none built.
+void JobReader::State::plan(size_t begin, size_t size, size_t number) {
+  Planned line{begin, size, number, 1};
+  const std::string text = bytes.substr(begin, size);
+  std::string error;
   try {
-    bytes = readInputFile(file, "job file");
+    const LineSpec spec = parseLine(file, number, text);
+    checkJobCount(spec, total, options.maxJobs);
+    baseOf(spec, scenes);
+    line.count = *spec.count;
+  } catch (const JobError& e) {
+    error = e.what();
+  } catch (const nlohmann::json::exception& e) {
+    error = fmt::format("{}: {}", whereOf(number), e.what());
+  }
+  if (!error.empty()) {
+    if (total == options.maxJobs) throw tooManyJobs(whereOf(number), options.maxJobs);  // a bad line is an entry too
+    errors.emplace(lines.size(), std::move(error));
+  }
+  total += line.count;
+  lines.push_back(line);
+}
+
+JobReader::JobReader(const fs::path& file, JobReaderOptions options) : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.file = file;
+  s.options = std::move(options);
+  try {
+    s.bytes = readInputFile(file, "job file");
   } catch (const InputFileError& e) {
     throw JobFileError(e.what());
   }
-  std::istringstream in(bytes);
-  std::vector<JobEntry> entries;
-  std::string text;
-  for (size_t number = 1; std::getline(in, text); ++number) {
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    const size_t first = text.find_first_not_of(" \t");
-    if (first == std::string::npos || text[first] == '#') continue;
-    readLine(file, Line{text, number}, outDir, entries);
+  size_t number = 0;
+  for (size_t pos = 0; pos < s.bytes.size();) {
+    const size_t end = std::min(s.bytes.find('\n', pos), s.bytes.size());
+    const size_t begin = pos;
+    pos = end + 1;
+    ++number;
+    if (s.options.cancel && s.options.cancel->load())
+      throw JobFileCancelled(fmt::format("interrupted while reading {} (at line {})", file.string(), number));
+    size_t size = end - begin;
+    if (size && s.bytes[begin + size - 1] == '\r') --size;
+    const size_t first = s.bytes.find_first_not_of(" \t", begin);
+    if (first >= begin + size || s.bytes[first] == '#') continue;
+    s.plan(begin, size, number);
   }
-  return entries;
+}
+
+JobReader::~JobReader() = default;
+
+uint64_t JobReader::total() const { return state_->total; }
+
+uint64_t JobReader::sceneFilesRead() const { return state_->scenes.reads(); }
+
+// The second pass over one job line: parsed again and its scene taken
+// from the cache (the first pass's verdict stands for a bad line).
+JobReader::State::Current JobReader::State::open(size_t index) {
+  const Planned& planned = lines[index];
+  Current line;
+  line.number = planned.number;
+  line.where = whereOf(planned.number);
+  line.count = planned.count;
+  if (auto bad = errors.find(index); bad != errors.end()) {
+    line.error = std::move(bad->second);
+    errors.erase(bad);
+    return line;
+  }
+  try {
+    line.spec = parseLine(file, planned.number, bytes.substr(planned.begin, planned.size));
+    line.swept = !line.spec->sweep.empty();
+    line.base = baseOf(*line.spec, scenes);
+  } catch (const JobError& e) {  // a scene that changed since the first pass
+    line.error = e.what();
+  } catch (const nlohmann::json::exception& e) {
+    line.error = fmt::format("{}: {}", line.where, e.what());
+  }
+  if (!line.error.empty()) line.spec.reset();
+  return line;
+}
+
+std::optional<JobEntry> JobReader::next() {
+  State& s = *state_;
+  while (!s.current || s.current->index == s.current->count) {
+    if (s.nextLine == s.lines.size()) return std::nullopt;
+    s.current = s.open(s.nextLine++);
+  }
+  return s.entryOf(*s.current, s.current->index++);
+}
+
+JobEntry JobReader::State::entryOf(const Current& line, uint64_t index) {
+  JobEntry entry;
+  entry.where = line.swept || line.count > 1 ? fmt::format("{} [{}]", line.where, index) : line.where;
+  if (!line.spec) {
+    entry.error = line.error;
+    return entry;
+  }
+  entry.beams = line.spec->beams;
+  try {
+    buildJob(line, index, entry);
+  } catch (const JobError& e) {
+    entry.job.reset();
+    entry.error = e.what();
+  } catch (const nlohmann::json::exception& e) {
+    entry.job.reset();
+    entry.error = fmt::format("{}: {}", entry.where, e.what());
+  }
+  return entry;
+}
+
+// Job `index` of a line: its sweep values applied to the line's scene, its
+// output named and claimed, its scene parsed and validated.
+void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& entry) {
+  const LineSpec& spec = *line.spec;
+  jf::Source jc = spec.c;
+  jc.file = entry.where;
+  Json scene = *line.base;
+  const Sweep& sweep = spec.sweep;
+  std::vector<size_t> digits(sweep.size());
+  uint64_t rest = index;
+  for (size_t k = sweep.size(); k-- > 0;) {
+    digits[k] = rest % sweep[k].second.size();
+    rest /= sweep[k].second.size();
+  }
+  for (size_t k = 0; k < sweep.size(); ++k)
+    applyOverride(jc, jf::child("/sweep", sweep[k].first), scene, sweep[k].first, sweep[k].second[digits[k]],
+                  spec.scenePath);
+  entry.output = claimOutput(jc, line, index, scene);
+  RenderJob job;
+  try {
+    job.scene = parseSceneJson(scene, spec.scenePath);
+  } catch (const SceneError& e) {
+    jc.fail(sweep.empty() && !jf::find(spec.job, "set") ? "/scene" : "/scene (with the job's overrides)", e.what());
+  }
+  job.output = entry.output;
+  job.beams = spec.beams;
+  job.seed = spec.seed;
+  entry.beams = job.beamCount();
+  entry.job = std::move(job);
+}
+
+// The job's output, refused when an earlier job of the file has it: one
+// hash lookup per job.
+fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene) {
+  const LineSpec& spec = *line.spec;
+  const std::string name =
+      spec.outputPattern ? expandPattern(jc, *spec.outputPattern, index, scene) : spec.scenePath.stem().string() + ".exr";
+  fs::path output = name;
+  if (output.is_relative()) output = options.outDir ? *options.outDir / output : spec.c.dir / output;
+  output = output.lexically_normal();
+  const auto [it, mine] = outputs.try_emplace(output.string(), Owner{line.number, index, line.swept});
+  if (mine) return output;
+  const Owner& owner = it->second;
+  const std::string other = owner.swept ? fmt::format("{} [{}]", whereOf(owner.number), owner.index) : whereOf(owner.number);
+  jc.fail("/output", fmt::format("{} is also the output of {}", output.string(), other));
 }
 
 }  // namespace spectrace

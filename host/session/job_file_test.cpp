@@ -1,7 +1,11 @@
 #include "session/job_file.h"
 
+#include <atomic>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,11 +34,41 @@ struct JobFileTest : ::testing::Test {
     std::ofstream(dir / "lamp.json") << kScene;
   }
   void TearDown() override { fs::remove_all(dir); }
-  std::vector<JobEntry> read(const std::string& text) {
+  fs::path write(const std::string& text) {
     std::ofstream(dir / "jobs.jsonl") << text;
-    return readJobFile(dir / "jobs.jsonl");
+    return dir / "jobs.jsonl";
   }
+  // Every entry of the job file `text`, as many as the reader counted.
+  std::vector<JobEntry> read(const std::string& text) {
+    JobReader reader(write(text));
+    std::vector<JobEntry> entries;
+    while (auto entry = reader.next()) entries.push_back(std::move(*entry));
+    EXPECT_EQ(entries.size(), reader.total());
+    return entries;
+  }
+  std::string jobsFile() const { return (dir / "jobs.jsonl").string(); }
 };
+
+// A sweep line over `keys` pointers of `values` values each (1, 2, ...).
+std::string sweepLine(const std::vector<std::string>& keys, size_t values) {
+  nlohmann::ordered_json line = {{"scene", "lamp.json"}, {"output", "s_{index}.exr"}, {"beams", 1}};
+  for (const auto& key : keys) {
+    std::vector<int> list(values);
+    for (size_t i = 0; i < values; ++i) list[i] = int(i + 1);
+    line["sweep"][key] = list;
+  }
+  return line.dump() + "\n";
+}
+
+template <typename F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 TEST_F(JobFileTest, SweepIsTheProductWithTheFirstKeyOutermostAndNamesOutputs) {
   const auto entries = read(
@@ -88,7 +122,78 @@ TEST_F(JobFileTest, ParseSceneJsonReadsWhatLoadSceneReads) {
 }
 
 TEST_F(JobFileTest, AMissingJobFileThrows) {
-  EXPECT_THROW(readJobFile(dir / "none.jsonl"), JobFileError);
+  EXPECT_THROW(JobReader{dir / "none.jsonl"}, JobFileError);
+}
+
+TEST_F(JobFileTest, ASweepOf2To64CombinationsIsRefusedNotWrappedToNone) {
+  // 256^8 = 2^64: a 64-bit product wraps to 0 (this file used to read as "0 jobs").
+  const std::vector<std::string> keys = {"/lights/0/power_w", "/lights/0/cone_deg", "/lights/0/position/0",
+                                         "/lights/0/position/1", "/lights/0/position/2", "/camera/position/0",
+                                         "/camera/position/1", "/render/seed"};
+  const fs::path file = write(sweepLine(keys, 256));
+  EXPECT_EQ(errorOf([&] { JobReader{file}; }),
+            jobsFile() + ":1: /sweep: 2^64 or more combinations (256 x 256 x 256 x 256 x 256 x 256 x 256 x 256); "
+                         "a job file may hold at most 1000000 jobs; split the sweep over several job files");
+}
+
+TEST_F(JobFileTest, ASweepPastTheJobLimitIsRefusedAndOneAtItIsCountedNotBuilt) {
+  const fs::path over = write("{\"scene\": \"lamp.json\", \"output\": \"one.exr\"}\n" +
+                              sweepLine({"/lights/0/power_w", "/render/seed"}, 1000));
+  EXPECT_EQ(errorOf([&] { JobReader{over}; }),
+            jobsFile() + ":2: /sweep: 1000000 combinations (1000 x 1000) after 1 job on the lines above; a job file "
+                         "may hold at most 1000000 jobs; split the sweep over several job files");
+  // At the limit: counted, not built; the jobs come one at a time.
+  JobReader reader(write(sweepLine({"/lights/0/power_w", "/render/seed"}, 1000)));
+  EXPECT_EQ(reader.total(), kMaxJobsPerFile);
+  EXPECT_EQ(reader.sceneFilesRead(), 1u);
+  for (int i = 0; i < 3; ++i) {
+    const auto entry = reader.next();
+    ASSERT_TRUE(entry && entry->job) << (entry ? entry->error : "no entry");
+    EXPECT_EQ(entry->where, jobsFile() + ":1 [" + std::to_string(i) + "]");
+    EXPECT_EQ(entry->job->output, dir / ("s_" + std::to_string(i) + ".exr"));
+    EXPECT_EQ(entry->job->scene.render.seed, uint64_t(i + 1));
+  }
+}
+
+TEST_F(JobFileTest, LinesPastAGivenLimitAreRefusedNamingTheLine) {
+  const std::string job = R"({"scene": "lamp.json", "output": "{index}.exr"})" "\n";
+  const std::string bad = R"({"scene": "none.json"})" "\n";  // a bad line is an entry too
+  JobReaderOptions options;
+  options.maxJobs = 3;
+  EXPECT_EQ(JobReader(write("# three\n" + job + bad + job), options).total(), 3u);
+  EXPECT_EQ(errorOf([&] { JobReader(write(job + job + bad + bad), options); }),
+            jobsFile() + ":4: the job file holds more than 3 jobs, the most a job file may hold; split it over several "
+                         "job files");
+}
+
+TEST_F(JobFileTest, ASceneFileIsReadOnceHoweverManyLinesNameIt) {
+  // Each line used to read its scene again (1.3 ms a job at 100,000 lines).
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "sub" / "lamp2.json") << kScene;
+  std::string text;
+  const char* names[] = {"lamp.json", "./lamp.json", "sub/../lamp.json", "sub/lamp2.json"};
+  for (int i = 0; i < 400; ++i)
+    text += fmt::format(R"({{"scene": "{}", "output": "o{}.exr", "set": {{"/render/seed": {}}}}})" "\n", names[i % 4], i, i);
+  JobReader reader(write(text));
+  EXPECT_EQ(reader.total(), 400u);
+  EXPECT_EQ(reader.sceneFilesRead(), 2u);  // counting read each scene once
+  uint64_t n = 0;
+  while (auto entry = reader.next()) {
+    ASSERT_TRUE(entry->job) << entry->error;
+    EXPECT_EQ(entry->job->scene.render.seed, n++);
+  }
+  EXPECT_EQ(n, 400u);
+  EXPECT_EQ(reader.sceneFilesRead(), 2u);  // and building the jobs read none again
+}
+
+TEST_F(JobFileTest, TheCancelFlagStopsReadingBetweenLines) {
+  std::atomic<bool> cancel{true};
+  JobReaderOptions options;
+  options.cancel = &cancel;
+  const fs::path file = write("# first\n" R"({"scene": "lamp.json"})" "\n");
+  EXPECT_EQ(errorOf([&] { JobReader(file, options); }), "interrupted while reading " + jobsFile() + " (at line 1)");
+  cancel = false;
+  EXPECT_EQ(JobReader(file, options).total(), 1u);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// libFuzzer target: batch job files (readJobFile): JSON lines with "set"
-// overrides and sweeps, each expanded and its scene parsed. A bad line must
-// become a job entry with an error; readJobFile itself throws only
-// JobFileError, for a file it cannot read.
+// libFuzzer target: batch job files (JobReader): JSON lines with "set"
+// overrides and sweeps, each job built and its scene parsed. A bad line must
+// become a job entry with an error; the reader itself throws only
+// JobFileError, for a file it cannot read or one past its job limit.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -35,9 +35,19 @@ fs::path jobFile() {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const fs::path file = jobFile();
   fuzz::writeBytes(file, data, size);
-  for (const JobEntry& entry : readJobFile(file, fuzz::scratchDir() / "out")) {
-    fuzz::require(entry.job.has_value() != !entry.error.empty(), "a job entry has both or neither of job and error");
-    fuzz::require(!entry.where.empty(), "a job entry does not say where it is from");
+  JobReaderOptions options;
+  options.outDir = fuzz::scratchDir() / "out";
+  options.maxJobs = 64;  // each job's scene is parsed: a few per input keep the fuzzer fast
+  try {
+    JobReader reader(file, options);
+    uint64_t entries = 0;
+    while (auto entry = reader.next()) {
+      ++entries;
+      fuzz::require(entry->job.has_value() != !entry->error.empty(), "a job entry has both or neither of job and error");
+      fuzz::require(!entry->where.empty(), "a job entry does not say where it is from");
+    }
+    fuzz::require(entries == reader.total(), "the reader yielded another number of jobs than it counted");
+  } catch (const JobFileError&) {
   }
   return 0;
 }
