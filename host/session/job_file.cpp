@@ -1,6 +1,7 @@
 #include "session/job_file.h"
 
 #include <algorithm>
+#include <cctype>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -242,6 +243,11 @@ std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes) {
   return copy;
 }
 
+std::string lowerCase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  return s;
+}
+
 }  // namespace
 
 struct JobReader::State {
@@ -256,6 +262,7 @@ struct JobReader::State {
     size_t number;
     uint64_t index;
     bool swept;
+    std::string extension;  // ".exr" as written (".EXR" is another EXR, but the same PNG preview)
   };
   // The line whose jobs next() is yielding.
   struct Current {
@@ -277,7 +284,7 @@ struct JobReader::State {
   SceneCache scenes;
   size_t nextLine = 0;
   std::optional<Current> current;
-  std::unordered_map<std::string, Owner> outputs;  // by output
+  std::unordered_map<std::string, Owner> outputs;  // by the output without its extension
 
   std::string whereOf(size_t number) const { return fmt::format("{}:{}", file.string(), number); }
   void plan(size_t begin, size_t size, size_t number);
@@ -428,8 +435,9 @@ void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& e
   entry.job = std::move(job);
 }
 
-// The job's output, refused when an earlier job of the file has it: one
-// hash lookup per job.
+// The job's output, refused unless it ends in .exr (its PNG preview would
+// be the same file or unrelated to it) and no earlier job of the file has
+// it or its PNG preview. One hash lookup per job.
 fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene) {
   const LineSpec& spec = *line.spec;
   const std::string name =
@@ -437,11 +445,22 @@ fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line
   fs::path output = name;
   if (output.is_relative()) output = options.outDir ? *options.outDir / output : spec.c.dir / output;
   output = output.lexically_normal();
-  const auto [it, mine] = outputs.try_emplace(output.string(), Owner{line.number, index, line.swept});
+  const std::string extension = output.extension().string();
+  if (lowerCase(extension) != ".exr") {
+    const std::string from = spec.outputPattern && *spec.outputPattern != name
+                                 ? fmt::format(" (from the pattern {})", jf::jsonQuoted(*spec.outputPattern))
+                                 : "";
+    jc.fail("/output", fmt::format("output {}{} must end in .exr (the PNG preview is written beside it as .png)",
+                                   output.string(), from));
+  }
+  const auto [it, mine] = outputs.try_emplace(fs::path(output).replace_extension().string(),
+                                              Owner{line.number, index, line.swept, extension});
   if (mine) return output;
   const Owner& owner = it->second;
   const std::string other = owner.swept ? fmt::format("{} [{}]", whereOf(owner.number), owner.index) : whereOf(owner.number);
-  jc.fail("/output", fmt::format("{} is also the output of {}", output.string(), other));
+  if (owner.extension == extension) jc.fail("/output", fmt::format("{} is also the output of {}", output.string(), other));
+  jc.fail("/output", fmt::format("its PNG preview {} is also that of {}", fs::path(output).replace_extension(".png").string(),
+                                 other));
 }
 
 }  // namespace spectrace

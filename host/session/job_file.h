@@ -81,8 +81,8 @@ class JobReader {
   // The number of entries next() yields in all.
   uint64_t total() const;
   // The next job in file order (a sweep's in index order), built now, or
-  // none after the last. An output that an earlier job of the file already
-  // has makes the entry an error.
+  // none after the last. An output that is not an .exr, or that an earlier
+  // job of the file already has, makes the entry an error.
   std::optional<JobEntry> next();
   // Scene files read from disk so far: each once, however many lines and
   // jobs name it (unless the scenes held pass kSceneCacheBytes).

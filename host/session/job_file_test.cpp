@@ -186,6 +186,28 @@ TEST_F(JobFileTest, ASceneFileIsReadOnceHoweverManyLinesNameIt) {
   EXPECT_EQ(reader.sceneFilesRead(), 2u);  // and building the jobs read none again
 }
 
+TEST_F(JobFileTest, AnOutputPatternMustMakeAnExrOfItsOwn) {
+  const auto entries = read(
+      R"({"scene": "lamp.json", "output": "{/lights/0/name}", "sweep": {"/lights/0/name": ["x.png", "a", "b.exr", "b.EXR"]}})" "\n"
+      R"({"scene": "lamp.json", "output": "p{/lights/0/power_w}.exr", "sweep": {"/lights/0/power_w": [1, 1.0, 2]}})" "\n"
+      R"({"scene": "lamp.json", "output": "b.exr"})" "\n");
+  ASSERT_EQ(entries.size(), 8u);
+  const std::string at = jobsFile() + ":1 [";
+  EXPECT_EQ(entries[0].error, at + "0]: /output: output " + (dir / "x.png").string() +
+                                  " (from the pattern \"{/lights/0/name}\") must end in .exr (the PNG preview is "
+                                  "written beside it as .png)");
+  EXPECT_NE(entries[1].error.find(at + "1]: /output: output " + (dir / "a").string() + " (from the pattern"),
+            std::string::npos) << entries[1].error;
+  ASSERT_TRUE(entries[2].job) << entries[2].error;
+  EXPECT_EQ(entries[3].error, at + "3]: /output: its PNG preview " + (dir / "b.png").string() + " is also that of " +
+                                  at + "2]");
+  ASSERT_TRUE(entries[4].job) << entries[4].error;
+  EXPECT_EQ(entries[5].error, jobsFile() + ":2 [1]: /output: " + (dir / "p1.exr").string() + " is also the output of " +
+                                  jobsFile() + ":2 [0]");
+  ASSERT_TRUE(entries[6].job) << entries[6].error;
+  EXPECT_EQ(entries[7].error, jobsFile() + ":3: /output: " + (dir / "b.exr").string() + " is also the output of " + at + "2]");
+}
+
 TEST_F(JobFileTest, TheCancelFlagStopsReadingBetweenLines) {
   std::atomic<bool> cancel{true};
   JobReaderOptions options;
