@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes spectrace's parsers of outside input with libFuzzer under ASan +
 # UBSan (docs/reliability.md, "Fuzzing"): scene JSON, SPD CSV, batch job
-# lines, render-state files and OBJ meshes.
+# lines and their sweeps, render-state files and OBJ meshes.
 #
 #   bash scripts/fuzz.sh [SECONDS]    # SECONDS per target, default 600
 #   bash scripts/fuzz.sh --build-only # install clang and build the targets only
@@ -10,7 +10,7 @@
 # SPECTRACE_FUZZ_TARGETS (space-separated subset). Installs clang and its
 # runtime (libFuzzer, sanitizers) if missing (needs root), builds the
 # targets into build-fuzz/ with clang, seeds each corpus from scenes/,
-# data/cie/ and tests/data/, and runs each target. The corpora grow in
+# data/cie/, tests/data/ and tests/fuzz/seeds/, and runs each target. The corpora grow in
 # build-fuzz/fuzz/corpus/<target>/ (kept between runs); a finding (crash,
 # sanitizer report, uncaught exception, leak, timeout, out-of-memory) is
 # saved under build-fuzz/fuzz/findings/<target>/ and fails the script.
@@ -20,7 +20,7 @@ build_only=false
 if [[ ${1:-} == --build-only ]]; then build_only=true; shift; fi
 seconds=${1:-600}
 parallel=${SPECTRACE_FUZZ_PARALLEL:-1}
-targets=(${SPECTRACE_FUZZ_TARGETS:-scene_json csv_spd job_lines film_state obj_mesh})
+targets=(${SPECTRACE_FUZZ_TARGETS:-scene_json csv_spd job_lines job_sweep film_state obj_mesh})
 
 missing=()
 for p in clang libclang-rt-14-dev; do
@@ -43,6 +43,7 @@ seed_files() {  # the seed inputs of target $1, one path a line
     scene_json) find scenes tests/data -name '*.json' -not -path '*/layering_back_arrow/*' ;;
     csv_spd) find scenes data/cie -name '*.csv' ;;
     job_lines) find scenes tests/data -name '*.jsonl' ;;
+    job_sweep) find tests/fuzz/seeds/job_sweep -type f ;;
     film_state) echo "$work/generated/valid.state" ;;
     obj_mesh) find scenes tests/data -name '*.obj' ;;
   esac
