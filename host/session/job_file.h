@@ -30,8 +30,8 @@ namespace spectrace {
 
 // At most this many jobs per job file (all lines and sweeps together).
 // The batch keeps a table row and an output name per job (a few hundred
-// bytes each, so about 300 MB here), and even at a second per job 10^6 jobs
-// take 11 days; a larger study is split over several job files.
+// bytes each, some hundreds of MB at the limit), and even at a second per
+// job 10^6 jobs take 11 days; a larger study is split over several files.
 inline constexpr uint64_t kMaxJobsPerFile = 1'000'000;
 
 // A job file's scenes are read once each and held while it is read, up to
