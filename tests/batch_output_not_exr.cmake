@@ -1,7 +1,8 @@
 # A job's output that is not an .exr, made by a placeholder of its output
 # pattern, is refused (exit 2, naming the line and /output), also with
 # --skip-existing when a complete EXR already has that name (this used to
-# skip it as complete, exit 0), and nothing is written.
+# skip it as complete, exit 0), and nothing is written; so is an output
+# holding a NUL character.
 #   -DSPECTRACE=path  -DSOURCE_DIR=repository  -DDIR=scratch folder
 include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
@@ -14,8 +15,12 @@ file(SHA256 "${DIR}/lamp" before)
 set(regex "output_not_exr.jsonl:1: /output: output [^\n]*lamp \\(from the pattern \"{/lights/0/name}\"\\) must end in .exr")
 expect_refused(not_exr "${regex}" "${SPECTRACE}" batch "${jobs}" --out-dir "${DIR}" --device cpu -q)
 expect_refused(not_exr_skip_existing "${regex}" "${SPECTRACE}" batch "${jobs}" --out-dir "${DIR}" --device cpu -q --skip-existing)
+# "a\u0000b.exr" would be cut to "a" where the system reads it: the EXR
+# and then its PNG preview went there (exit 0).
+expect_refused(nul "output_nul.jsonl:1: /output: output .a.u0000b.exr. holds a NUL character"
+               "${SPECTRACE}" batch "${SOURCE_DIR}/tests/data/batch/output_nul.jsonl" --out-dir "${DIR}" --device cpu -q)
 file(SHA256 "${DIR}/lamp" after)
-if(NOT before STREQUAL after OR EXISTS "${DIR}/lamp.png")
+if(NOT before STREQUAL after OR EXISTS "${DIR}/lamp.png" OR EXISTS "${DIR}/a")
   message(FATAL_ERROR "a refused output was written")
 endif()
-message(STATUS "an output pattern making no .exr was refused, with and without --skip-existing")
+message(STATUS "an output pattern making no .exr, and one holding a NUL, were refused")

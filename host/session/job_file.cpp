@@ -445,6 +445,11 @@ fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line
   fs::path output = name;
   if (output.is_relative()) output = options.outDir ? *options.outDir / output : spec.c.dir / output;
   output = output.lexically_normal();
+  // The system reads a file name up to its first NUL: "a\u0000b.exr" would
+  // write the EXR, and then its PNG preview, to "a".
+  if (const size_t nul = name.find('\0'); nul != std::string::npos)
+    jc.fail("/output", fmt::format("output {} holds a NUL character, which no file name can (it would be cut to {})",
+                                   jf::jsonQuoted(name), jf::jsonQuoted(name.substr(0, nul))));
   const std::string extension = output.extension().string();
   if (lowerCase(extension) != ".exr") {
     const std::string from = spec.outputPattern && *spec.outputPattern != name

@@ -208,6 +208,19 @@ TEST_F(JobFileTest, AnOutputPatternMustMakeAnExrOfItsOwn) {
   EXPECT_EQ(entries[7].error, jobsFile() + ":3: /output: " + (dir / "b.exr").string() + " is also the output of " + at + "2]");
 }
 
+TEST_F(JobFileTest, AnOutputWithANulCharacterIsRefused) {
+  // The system would cut the name at the NUL: EXR and PNG preview both to "a".
+  const auto entries = read(
+      R"({"scene": "lamp.json", "output": "a\u0000b.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "{/lights/0/name}.exr", "sweep": {"/lights/0/name": ["c\u0000", "c"]}})" "\n");
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_EQ(entries[0].error, jobsFile() + ":1: /output: output \"a\\u0000b.exr\" holds a NUL character, which no "
+                                           "file name can (it would be cut to \"a\")");
+  EXPECT_NE(entries[1].error.find(":2 [0]: /output: output \"c\\u0000.exr\" holds a NUL"), std::string::npos)
+      << entries[1].error;
+  ASSERT_TRUE(entries[2].job) << entries[2].error;
+}
+
 TEST_F(JobFileTest, TheCancelFlagStopsReadingBetweenLines) {
   std::atomic<bool> cancel{true};
   JobReaderOptions options;

@@ -91,7 +91,7 @@ void checkSweepLines(const std::vector<JobEntry>& first, const std::vector<JobEn
     if (first[i].job)
       fuzz::require(third[i].error == third[i].where + ": /output: " + first[i].output.string() +
                                           " is also the output of " + first[i].where,
-                    "a copy of an earlier job was refused for another reason than its output");
+                    "a copy of " + first[i].where + " was refused for another reason than its output: " + third[i].error);
   }
 }
 
