@@ -34,3 +34,12 @@ function(expect_refused name regex)
     message(FATAL_ERROR "${name}: the message does not match '${regex}':\n${out}${err}")
   endif()
 endfunction()
+
+# Two shards of SCENE, 1000 beams each, on the CPU reference: DIR/part0 and
+# DIR/part1, each an .exr and a .state.
+function(render_two_shards)
+  foreach(part 0 1)
+    run("${SPECTRACE}" render "${SCENE}" --device cpu -q --no-png --beams 2000 --shard ${part}/2
+        -o "${DIR}/part${part}.exr" --state "${DIR}/part${part}.state")
+  endforeach()
+endfunction()

@@ -8,10 +8,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
 set(quick --device cpu -q --no-png)
-foreach(part 0 1)
-  run("${SPECTRACE}" render "${SCENE}" ${quick} --beams 2000 --shard ${part}/2 -o "${DIR}/part${part}.exr"
-      --state "${DIR}/part${part}.state")
-endforeach()
+render_two_shards()
 set(part0 "${DIR}/part0.state")
 set(part1 "${DIR}/part1.state")
 
