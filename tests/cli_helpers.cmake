@@ -1,5 +1,5 @@
 # Helpers of the CLI test scripts (cli_state.cmake, cli_mpi.cmake,
-# outputs_never_inputs.cmake, resume_refusals.cmake, merge_messages.cmake,
+# outputs_never_inputs.cmake, resume_refusals.cmake, merge_messages.cmake, resume_rate.cmake,
 # state_refusals.cmake),
 # included by them; COMPARE is tools/exr_pixels_equal.
 

@@ -179,8 +179,13 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
           std::fprintf(stderr, "spectrace: %s: beams aimed at the camera (largest weight %.3g)\n", light.label.c_str(),
                        light.largestWeight);
       }
-      std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s\n", (unsigned long long)result.beamsTraced,
-                   result.wallSeconds, double(result.beamsTraced) / result.wallSeconds * 1e-6, result.deviceName.c_str());
+      // The rate of this run's beams: a resumed film's were traced before.
+      const uint64_t thisRun = result.beamsTraced - result.beamsResumed;
+      std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s%s\n", (unsigned long long)thisRun,
+                   result.wallSeconds, double(thisRun) / result.wallSeconds * 1e-6, result.deviceName.c_str(),
+                   result.beamsResumed
+                       ? fmt::format(", after {} resumed from the state", result.beamsResumed).c_str()
+                       : "");
       const uint64_t counted = result.summary.countedBeams;
       // A beam counts once at the camera and, with connections, once more per bounce.
       const auto& constants = result.plan.device.constants;

@@ -175,6 +175,7 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
     }
   }
   result.beamsTraced = done;
+  result.beamsResumed = resumed;
   result.traceWallSeconds = secondsSince(traceStart);
   const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
   result.image = tracer->develop(parameters, &result.summary);

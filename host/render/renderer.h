@@ -76,6 +76,7 @@ struct RenderResult {
   FilmSummary summary;          // counted beams and largest count, from develop
   RenderImage image;
   uint64_t beamsTraced = 0;     // < options.beams only when cancelled
+  uint64_t beamsResumed = 0;    // of beamsTraced, those the resumed film held (not traced in this run)
   DeviceKind deviceKind = DeviceKind::Cpu;
   std::string deviceName;       // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" or "CPU reference, 2 threads, x86-64-v3"
   double wallSeconds = 0.0;
