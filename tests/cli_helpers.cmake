@@ -11,6 +11,19 @@ function(run)
   endif()
 endfunction()
 
+# Fails the test (naming the case `name`) unless the command exits 0 with
+# output matching `regex`; the output is left in `output` for the caller.
+function(expect_output name regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${name}: exit code ${rc}:\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${regex}")
+    message(FATAL_ERROR "${name}: the output does not match '${regex}':\n${out}${err}")
+  endif()
+  set(output "${out}${err}" PARENT_SCOPE)
+endfunction()
+
 # Fails the test unless two EXR files' pixel data are bit-identical.
 function(expect_same a b)
   execute_process(COMMAND ${COMPARE} ${a} ${b} RESULT_VARIABLE rc OUTPUT_VARIABLE out)

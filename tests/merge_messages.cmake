@@ -14,14 +14,7 @@ endforeach()
 
 # Merges the states and fails unless the output matches `regex`.
 function(merged regex)
-  execute_process(COMMAND "${SPECTRACE}" merge ${ARGN} ${quick} -o "${DIR}/merged.exr"
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "merge ${ARGN}: exit code ${rc}:\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${regex}")
-    message(FATAL_ERROR "merge ${ARGN}: the output does not match '${regex}':\n${out}${err}")
-  endif()
+  expect_output("merge ${ARGN}" "${regex}" "${SPECTRACE}" merge ${ARGN} ${quick} -o "${DIR}/merged.exr")
 endfunction()
 merged("spectrace: merged 1 state, 1000 beams -> " "${DIR}/part0.state")
 merged("spectrace: merged 2 states, 2000 beams -> " "${DIR}/part0.state" "${DIR}/part1.state")

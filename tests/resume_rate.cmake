@@ -9,15 +9,9 @@ file(MAKE_DIRECTORY "${DIR}")
 render_two_shards()
 
 function(summary_matches name regex)
-  execute_process(COMMAND "${SPECTRACE}" render "${SCENE}" --device cpu --no-png -o "${DIR}/${name}.exr" ${ARGN}
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${name}: exit code ${rc}:\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${regex}")
-    message(FATAL_ERROR "${name}: the summary does not match '${regex}':\n${out}${err}")
-  endif()
-  set(summary "${out}${err}" PARENT_SCOPE)
+  expect_output("${name}" "${regex}" "${SPECTRACE}" render "${SCENE}" --device cpu --no-png -o "${DIR}/${name}.exr"
+                ${ARGN})
+  set(summary "${output}" PARENT_SCOPE)
 endfunction()
 # part0.state holds beams [0, 1000); the resumed render of 2000 traces 1000.
 summary_matches(resumed "spectrace: 1000 beams in [0-9.]+ s \\([0-9.]+ Mbeam/s\\) on [^\n]*, after 1000 resumed from the state\n"
