@@ -26,7 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const FilmState state = readFilmState(file);
     const SpectralHistogram& h = state.histogram;
-    fuzz::require(h.counts().size() == size_t(h.pixelsX) * h.pixelsY * h.bins, "counts do not match the film's shape");
+    fuzz::require(h.counts().size() == size_t(h.pixelsX) * h.pixelsY * h.bins * h.counterWords(), "counts do not match the film's shape");
     fuzz::require(fingerprintDifference(state.fingerprint, state.fingerprint).empty(), "a fingerprint differs from itself");
     (void)state.beams();
     (void)mergeRefusal(state, state);
