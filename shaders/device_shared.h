@@ -118,7 +118,8 @@ START_BINDING(SpecConstantId)
   kSpecUniformIntervals = 12,
   kSpecUniformCmfNodes = 13,
   kSpecUniformAliasColumns = 14,
-  kSpecObjects = 15          // 0: no scene objects (transport compiled out); 1: some; 2: run time
+  kSpecObjects = 15,         // 0: no scene objects (transport compiled out); 1: some; 2: run time
+  kSpecCameraPaths = 16      // 0: no camera paths (camera_path.h compiled out); 1: camera paths; 2: run time
 END_BINDING();
 // Stages of the bench's cost profile (shaders/profile.h), each adding one
 // part of the kernel to the one before.
@@ -168,6 +169,30 @@ SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (sp
 // camera connection, kRngBlockBounce + 2b + 1 (aperture u, aperture v,
 // rounding, spare): keyed on (seed, beam, bounce), as every block is.
 SPECTRACE_CONSTANT uint kRngBlockBounce = 3;
+// Camera paths (camera_path.h), keyed on (seed, path index, block) like
+// beams, in blocks far above any bounce's: the start (pixel u, v, aperture
+// u, v), the wavelength (interval (64 bit), position, rounding), the light
+// (64 bit, as kRngBlockLight), and per vertex v the blocks
+// kRngBlockCameraVertex + 2v (choice, direction u, direction v, rounding)
+// and + 2v + 1 (light point u, v, rounding, spare). The pixel rounds
+// (camera_path.h: cameraPathCell) key kRngBlockCameraRound on (seed,
+// round index).
+SPECTRACE_CONSTANT uint kRngBlockCameraStart = 0x80000000u;
+SPECTRACE_CONSTANT uint kRngBlockCameraSpectral = 0x80000001u;
+SPECTRACE_CONSTANT uint kRngBlockCameraLight = 0x80000002u;
+SPECTRACE_CONSTANT uint kRngBlockCameraRound = 0x80000003u;
+SPECTRACE_CONSTANT uint kRngBlockCameraVertex = 0x80000010u;
+
+// The estimators a render runs (TraceConstants.estimators): each path index
+// traces a light path (a beam from a light, counted at the camera and
+// through camera connections) and/or a camera path (from a pixel, through
+// the objects, to the lights). With both, each path of light is counted by
+// exactly one of them (camera_path.h says which).
+SPECTRACE_CONSTANT uint kEstimatorLightPaths = 1u;
+// The most wavelengths a path carries (shaders/wavelengths.h); k is a power
+// of two up to it.
+SPECTRACE_CONSTANT uint kMaxWavelengthsPerPath = 4u;
+SPECTRACE_CONSTANT uint kEstimatorCameraPaths = 2u;
 
 // Scene objects. Shapes (spectrace::ShapeType, at the end of this file; one
 // host unit per kind in host/shapes/<kind>_shape.cpp) become primitives in
@@ -258,6 +283,11 @@ struct LightRecord {
   // data (words [dataFirst, dataFirst + dataWords)); 0, 0: none.
   uint dataFirst;
   uint dataWords;
+  // Camera paths: (this light's traced power / the sampled power) / its
+  // probability of being chosen, the factor that makes a camera path's count
+  // through this light unbiased in the film's units (camera_path.h).
+  float cameraPathWeight;
+  float padding1;
 };
 
 // One interval of a light's piecewise-linear SPD, restricted to the
@@ -337,6 +367,12 @@ struct TraceConstants {
   uint connect;             // 1: connect diffuse vertices to the camera (light tracing)
   vec4 cameraParams;        // the camera model's own constants (shaders/cameras/<model>.h)
   uint cameraDataFirst;     // its tables in the scene data, if it has any
+  uint estimators;          // kEstimator* bits
+  // Camera paths: the stored window's sensor area times the aperture's
+  // area over the aperture distance squared (m^2; camera_path.h).
+  float cameraPathScale;
+  uint wavelengthsPerPath;  // k: the wavelengths a camera path carries (wavelengths.h)
+  uint padding2;
 };
 
 // The film's channels, defined only here: each stored pixel owns
@@ -495,9 +531,9 @@ inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1}
                                                    {kBindingResolveHistogram, kMaxHistogramChunks}};
 inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
 
-static_assert(sizeof(LightRecord) == 144);
+static_assert(sizeof(LightRecord) == 152);
 static_assert(sizeof(SpectralInterval) == 24);
-static_assert(sizeof(TraceConstants) == 160);
+static_assert(sizeof(TraceConstants) == 176);
 static_assert(offsetof(TraceConstants, cameraParams) == 140);
 static_assert(offsetof(TraceConstants, cameraDataFirst) == 156);
 static_assert(sizeof(Primitive) == 48);

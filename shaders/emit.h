@@ -20,12 +20,13 @@ FN uint aliasLookup(uint first, uint bits, uint64_t u) {
   return (u << bits) < entry.threshold ? column : entry.alias;
 }
 
-// A light in proportion to its sampled power, from a 64-bit uniform of the
-// light block (drawn only when there is a choice).
-FN uint chooseLight(uint64_t seed, uint64_t beamIndex) {
+// A light in proportion to its sampled power, from a 64-bit uniform of
+// block `block` (drawn only when there is a choice): a beam's from
+// kRngBlockLight, a camera path's from kRngBlockCameraLight.
+FN uint chooseLight(uint64_t seed, uint64_t index, uint block) {
   uint lightIndex = 0u;
   if (SPECTRACE_SELECT_LIGHT) {
-    uvec4 select = philox4x32(seed, beamIndex, kRngBlockLight);
+    uvec4 select = philox4x32(seed, index, block);
     lightIndex = aliasLookup(0u, constants.lightAliasBits, joinWords(select.x, select.y));
   }
   return lightIndex;

@@ -30,6 +30,12 @@
 #ifndef SPECTRACE_OBJECTS
 #define SPECTRACE_OBJECTS (constants.objectPrimitives > 0u)
 #endif
+#ifndef SPECTRACE_CAMERA_PATHS
+#define SPECTRACE_CAMERA_PATHS ((constants.estimators & kEstimatorCameraPaths) != 0u)
+#endif
+#ifndef SPECTRACE_LIGHT_PATHS
+#define SPECTRACE_LIGHT_PATHS ((constants.estimators & kEstimatorLightPaths) != 0u)
+#endif
 #ifndef SPECTRACE_RECORDING
 #define SPECTRACE_RECORDING false  // true: note each beam's counts (BeamRecord) instead of counting them
 #endif

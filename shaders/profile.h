@@ -31,7 +31,7 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   hash = profileMix(hash, geometry.z ^ geometry.w);
   if (stage == kProfileStagePhilox) return profileKeep(hash);
 
-  LightRecord light = readLight(chooseLight(constants.seed, beamIndex));
+  LightRecord light = readLight(chooseLight(constants.seed, beamIndex, kRngBlockLight));
   hash = profileMix(hash, light.spectralFirst ^ light.spectralCount ^ light.type);
   if (stage == kProfileStageLight) return profileKeep(hash);
 

@@ -33,6 +33,18 @@ FN bool hitSensor(vec3 origin, vec3 direction, OUT(uvec2) cell) {
   return true;
 }
 
+// The inverse of hitSensor's pixel mapping (camera paths): the point of
+// the sensor plane at (column + u, row + v) in pixels of `cell`, for an
+// image `flipped` on the sensor or not.
+FN vec3 sensorPointInCell(uvec2 cell, float u, float v, bool flipped) {
+  vec2 halfSize = constants.sensorHalfSize;
+  PRECISE float fx = (float(cell.x) + u) / constants.pixelsPerMetre.x;
+  PRECISE float fy = (float(cell.y) + v) / constants.pixelsPerMetre.y;
+  PRECISE float hx = flipped ? halfSize.x - fx : fx - halfSize.x;
+  PRECISE float hy = flipped ? fy - halfSize.y : halfSize.y - fy;
+  return vec3(hx, hy, 0.0f);
+}
+
 // A pixel's index, row-major over the whole sensor (beam records).
 FN uint pixelOfCell(uvec2 cell, uint pixelsX) { return cell.y * pixelsX + cell.x; }
 

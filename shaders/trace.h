@@ -1,5 +1,6 @@
 // One beam, from its index to the film: emit (emit.h, lights/), transport
-// (transport.h), camera and sensor (camera.h, cameras/, sensor.h). Shared by the trace shader and the CPU
+// (transport.h), camera and sensor (camera.h, cameras/, sensor.h); and the
+// camera path of the same index (camera_path.h). Shared by the trace shader and the CPU
 // reference; the includer provides what kernel_interface.h lists.
 #ifndef SPECTRACE_TRACE_H
 #define SPECTRACE_TRACE_H
@@ -8,14 +9,17 @@
 #include "beam_math.h"
 #include "scene_data.h"
 #include "emit.h"
+#include "light_arrival.h"
 #include "camera.h"
 #include "sensor.h"
 #include "objects.h"
 #include "transport.h"
+#ifdef SPECTRACE_WITH_CAMERA_PATHS
+#include "camera_path.h"
+#endif
 
-// Traces beam `beamIndex` and notes what it put on the film in `tally`:
-// counts it (or, in record mode, only notes it). Returns whether it made
-// any count. Every random number comes from (seed, beamIndex, block), so the
+// Light path `beamIndex` (a beam): counted into the film, or noted in
+// `tally`. Every random number comes from (seed, beamIndex, block), so the
 // result is independent of batching, threads and device.
 //
 // Without objects the wavelength is drawn last, and only for a beam that
@@ -23,9 +27,15 @@
 // it, and most beams miss. With objects, materials depend on it, so it is
 // drawn before transport. Lazy drawing changes no beam: the spectral
 // block's words are the same whenever they are drawn.
-FN bool traceBeam(uint64_t beamIndex, INOUT(BeamTally) tally) {
+//
+// With camera paths, the paths they count are left to them (camera_path.h):
+// every path from an emitter with an area, and, from the other lights but
+// lasers, every path whose first surface is diffuse.
+FN void traceLightPath(uint64_t beamIndex, INOUT(BeamTally) tally) {
+  LightRecord light = readLight(chooseLight(constants.seed, beamIndex, kRngBlockLight));
+  bool cameraPaths = SPECTRACE_CAMERA_PATHS;
+  if (cameraPaths && lightSeenDirectly(light)) return;
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
-  LightRecord light = readLight(chooseLight(constants.seed, beamIndex));
   vec3 origin;
   vec3 direction;
   float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
@@ -33,7 +43,8 @@ FN bool traceBeam(uint64_t beamIndex, INOUT(BeamTally) tally) {
   if (SPECTRACE_OBJECTS) {
     uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
     float lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
-    transportBeam(beamIndex, origin, direction, ratio, lambda, uniformFromWord(spectral.w), tally);
+    bool diffuseFirstIsCameras = cameraPaths && lightLightsPoints(light);
+    transportBeam(beamIndex, origin, direction, ratio, lambda, uniformFromWord(spectral.w), diffuseFirstIsCameras, tally);
   } else {
     uvec2 cell;
     bool hit = hitSensor(origin, direction, cell) && ratio > 0.0f;
@@ -43,6 +54,17 @@ FN bool traceBeam(uint64_t beamIndex, INOUT(BeamTally) tally) {
       contribute(tally, cell, storedBinOf(lambda), lambda, ratio, uniformFromWord(spectral.w));
     }
   }
+}
+
+// Path index `pathIndex` through the render's estimators (device_shared.h,
+// kEstimator*): its light path, then its camera path. Notes what they put on
+// the film in `tally`: counts it (or, in record mode, only notes it).
+// Returns whether they made any count.
+FN bool traceBeam(uint64_t pathIndex, INOUT(BeamTally) tally) {
+  if (SPECTRACE_LIGHT_PATHS) traceLightPath(pathIndex, tally);
+#ifdef SPECTRACE_WITH_CAMERA_PATHS
+  if (SPECTRACE_CAMERA_PATHS) traceCameraPath(pathIndex, tally);
+#endif
   return tally.contributions > 0u;
 }
 

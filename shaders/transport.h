@@ -17,9 +17,11 @@
 #include "material.h"
 
 // The beam from its light (origin, direction, weight ratio), with its
-// wavelength, through the scene's objects to the camera.
+// wavelength, through the scene's objects to the camera. With
+// diffuseFirstIsCameras, a beam whose first surface is diffuse ends there:
+// camera paths count those paths (camera_path.h).
 FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float ratio, float lambda, float spareUniform,
-                      INOUT(BeamTally) tally) {
+                      bool diffuseFirstIsCameras, INOUT(BeamTally) tally) {
   uint bin = storedBinOf(lambda);
   bool connect = constants.connect != 0u;
   bool afterDiffuse = false;
@@ -40,6 +42,7 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     Primitive surface = readPrimitive(hit.primitive);
     Material material = readMaterial(surface.material);
     if (materialEndsEveryBeam(material)) return;
+    if (bounce == 0u && diffuseFirstIsCameras && material.type == kMaterialDiffuse) return;
     PRECISE vec3 found = origin + direction * hit.t;
     vec3 n = primitiveNormal(surface, found);
     SurfaceHit at;

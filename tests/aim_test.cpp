@@ -85,9 +85,13 @@ class AimedVersusAnalog : public ::testing::TestWithParam<AimCase> {};
 TEST_P(AimedVersusAnalog, SameExpectedImage) {
   const AimCase c = GetParam();
   const Scene scene = aimScene(c.type, c.pinhole);
-  CompileOptions analogOptions;
+  // Aiming is the light paths' (camera paths would count these scenes' area
+  // lights in both plans alike).
+  CompileOptions aimedOptions;
+  aimedOptions.cameraPaths = false;
+  CompileOptions analogOptions = aimedOptions;
   analogOptions.aim = false;
-  const CompiledScene aimed = compileScene(scene, 101);
+  const CompiledScene aimed = compileScene(scene, 101, aimedOptions);
   const CompiledScene analog = compileScene(scene, 202, analogOptions);
   ASSERT_EQ(aimed.device.lights.size(), 1u);
   EXPECT_EQ(aimed.device.lights[0].aimed, 1u) << "the scene is meant to be aimed";
@@ -132,9 +136,11 @@ TEST(AimedSampling, MixedLightsKeepTheirSharesOfTheImage) {
   scene.lights.push_back(pointLight({-0.001, 0.0, 0.025}, 0.05, *cieIlluminant("A")));
   scene.lights.push_back(lightOfType(LightType::Rect));
   scene.lights.back().position.z += 0.01;
-  CompileOptions analogOptions;
+  CompileOptions aimedOptions;  // light paths, as above
+  aimedOptions.cameraPaths = false;
+  CompileOptions analogOptions = aimedOptions;
   analogOptions.aim = false;
-  const CompiledScene aimed = compileScene(scene, 303);
+  const CompiledScene aimed = compileScene(scene, 303, aimedOptions);
   const CompiledScene analog = compileScene(scene, 404, analogOptions);
   const auto a = renderOnGpu(aimed, testing::scaledBeams(2'000'000, 500'000));
   const auto b = renderOnGpu(analog, testing::scaledBeams(24'000'000, 6'000'000));

@@ -153,8 +153,15 @@ class OpticsReference : public ::testing::TestWithParam<DeviceChoice> {
   std::unique_ptr<Device> device_;
 };
 
-CompileOptions analogTransport() {
+// Light paths (the estimators under test here), with connections or
+// analog.
+CompileOptions lightPathsOnly() {
   CompileOptions o;
+  o.cameraPaths = false;
+  return o;
+}
+CompileOptions analogTransport() {
+  CompileOptions o = lightPathsOnly();
   o.connect = false;
   return o;
 }
@@ -308,7 +315,7 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
   // contribution) is the estimator's standard error, here from hundreds of
   // counts per pixel.
   const uint64_t kConnectBeams = testing::scaledBeams(1'000'000, 250'000);
-  const RenderResult connected = renderHere(p.scene, kConnectBeams, 12);
+  const RenderResult connected = renderHere(p.scene, kConnectBeams, 12, lightPathsOnly());
   ASSERT_TRUE(connected.plan.film.weighted());
   ASSERT_EQ(connected.image.irradianceError.size(), expected.size());
   std::vector<double> connectedSigma;
@@ -336,12 +343,18 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
 // irradiance on the square E = I cos / r^2, times rho / pi, times the
 // pinhole's factor pi r_a^2 cos^4(theta) / d^2 on the sensor (the aperture's
 // own extent changes it by ~1e-6 here), averaged over the pixel (Gauss-
-// Legendre), in W/m^2 over the whole spectrum. The camera connections are worth ~1e-10 of a beam each, which
-// the film must keep exactly (device_shared.h, kWeightUnitsFractional).
-// Checked where the whole pixel sees the square inside the spot's cone.
-// (The scene is symmetric in x, so the camera frame's x sense is moot.)
-TEST_P(OpticsReference, LitGreySquareMatchesItsClosedForm) {
-  Scene scene = loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/bench/fom_lit_grey.json");
+// Legendre), in W/m^2 over the whole spectrum. Checked where the whole
+// pixel sees the square inside the spot's cone. (The scene is symmetric in
+// x, so the camera frame's x sense is moot.)
+struct LitGreySquare {
+  Scene scene;
+  std::vector<double> expected;  // W/m^2 of each checked pixel
+  std::vector<size_t> pixels;    // the pixels checked
+};
+LitGreySquare litGreySquare() {
+  LitGreySquare s;
+  Scene& scene = s.scene;
+  scene = loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/bench/fom_lit_grey.json");
   scene.camera.pixelsX = scene.camera.pixelsY = 32;
   // All of D65's table (300 to 830 nm), so the image holds the spot's whole
   // 1 W (the bench's 360 to 830 nm leaves out the ultraviolet's share).
@@ -358,8 +371,6 @@ TEST_P(OpticsReference, LitGreySquareMatchesItsClosedForm) {
     return std::abs(p.x) < half && std::abs(p.y) < half && glm::dot(glm::normalize(p - spot.position), axis) > cosCone;
   };
   const Quadrature q = gaussLegendre01(4);
-  std::vector<double> expected;
-  std::vector<size_t> pixels;
   for (int row = 0; row < scene.camera.pixelsY; ++row)
     for (int col = 0; col < scene.camera.pixelsX; ++col) {
       const SensorRect r = pixelOnSensor(scene.camera, col, row);
@@ -379,24 +390,138 @@ TEST_P(OpticsReference, LitGreySquareMatchesItsClosedForm) {
           const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
           sum += q.w[i] * q.w[j] * rho / kPi * irradiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
         }
-      expected.push_back(sum);
-      pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
+      s.expected.push_back(sum);
+      s.pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
     }
-  ASSERT_GT(pixels.size(), 300u) << "most of the image is the lit square";
+  return s;
+}
 
+CompileOptions withEstimators(bool lightPaths, bool cameraPaths) {
+  CompileOptions o;
+  o.lightPaths = lightPaths;
+  o.cameraPaths = cameraPaths;
+  return o;
+}
+
+// Light paths: the camera connections are worth ~1e-10 of a beam each,
+// which the film must keep exactly (device_shared.h,
+// kWeightUnitsFractional). A beam makes one count at most (one diffuse
+// vertex, and the spot cannot reach the aperture), so the film's own
+// estimate is the standard error.
+TEST_P(OpticsReference, LitGreySquareMatchesItsClosedFormWithLightPaths) {
+  const LitGreySquare s = litGreySquare();
+  ASSERT_GT(s.pixels.size(), 300u) << "most of the image is the lit square";
   const uint64_t kBeams = testing::scaledBeams(GetParam() == DeviceChoice::Gpu ? 2'000'000 : 4'000'000, 400'000);
-  const RenderResult result = renderHere(scene, kBeams, 21);
+  const RenderResult result = renderHere(s.scene, kBeams, 21, withEstimators(true, false));
   ASSERT_TRUE(result.plan.film.weighted());
   std::vector<float> measured;
   std::vector<double> sigma;
-  for (size_t p : pixels) {
+  for (size_t p : s.pixels) {
     measured.push_back(result.image.irradiance[p]);
     sigma.push_back(double(result.image.irradianceError[p]));
     ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
   }
-  // A beam makes one count at most (one diffuse vertex, and the spot cannot
-  // reach the aperture), so the film's own estimate is the standard error.
-  expectPixels(measured, expected, sigma, std::string(name()) + " lit grey square");
+  expectPixels(measured, s.expected, sigma, std::string(name()) + " lit grey square, light paths");
+}
+
+// Camera paths (alone, and with light paths, which then count nothing
+// here: every path's first surface is the diffuse square). Each path's
+// count is the closed form's integrand at its own point of the pixel and
+// the aperture (grey: the wavelength does not change it), and each pixel
+// gets n or n + 1 of N paths (camera_path.h: whole rounds of one path per
+// pixel, the last round part). So a pixel's relative error is at most
+// the integrand's spread over the pixel (cos^4 and the irradiance change
+// by under 3% across one) over sqrt(n), plus 1/n for the part round: 5 of
+// that bounds it, far tighter than the film's own error estimate (the sum
+// of squared weights, which takes the paths as drawn at random).
+TEST_P(OpticsReference, LitGreySquareMatchesItsClosedFormWithCameraPaths) {
+  const LitGreySquare s = litGreySquare();
+  const uint64_t kPaths = testing::scaledBeams(1'000'000, 100'000);
+  const double n = double(kPaths) / double(s.scene.camera.pixelsX * s.scene.camera.pixelsY);
+  const double tolerance = 5.0 * (0.03 / std::sqrt(n) + 1.0 / n);
+  for (const bool lightPaths : {false, true}) {
+    const RenderResult result = renderHere(s.scene, kPaths, 22, withEstimators(lightPaths, true));
+    ASSERT_TRUE(result.plan.film.weighted());
+    double worst = 0.0;
+    for (size_t i = 0; i < s.pixels.size(); ++i) {
+      const double measured = result.image.irradiance[s.pixels[i]];
+      const double relative = std::abs(measured / s.expected[i] - 1.0);
+      worst = std::max(worst, relative);
+      EXPECT_LE(relative, tolerance) << name() << (lightPaths ? " both" : " camera") << ": pixel " << s.pixels[i]
+                                     << " measured " << measured << " W/m^2, expected " << s.expected[i];
+    }
+    std::printf("  %s, %s: %zu pixels, worst relative error %.2e (tolerance %.2e)\n", name(),
+                lightPaths ? "both" : "camera paths", s.pixels.size(), worst, tolerance);
+  }
+}
+
+// Scene A of the bench (scenes/bench/fom_emitter.json at 32 x 32, over all
+// of D65's table): a 0.6 m square Lambertian emitter of 1 W at z = 1.1 m
+// facing the pinhole. Its radiance is L = Phi / (pi A); a sensor point that
+// sees it through the aperture gets L pi r_a^2 cos^4(theta) / d^2, averaged
+// over the pixel (Gauss-Legendre), checked where the whole pixel sees the
+// square. Light paths (aimed beams through the pinhole, one count each: the
+// film's own error is the standard error) and camera paths (seen directly;
+// the same bound as the lit grey square's).
+TEST_P(OpticsReference, EmitterSquareMatchesItsClosedForm) {
+  Scene scene = loadScene(std::string(SPECTRACE_SOURCE_DIR) + "/scenes/bench/fom_emitter.json");
+  scene.camera.pixelsX = scene.camera.pixelsY = 32;
+  scene.spectrum = {300.0, 830.0, 53};
+  const Light& square = scene.lights.at(0);
+  const double d = pinholeOf(scene.camera)->distanceM, ra = pinholeOf(scene.camera)->radiusM;
+  const double z = 1.1, half = 0.3;
+  const double radiance = square.powerW / (kPi * square.sizeM.x * square.sizeM.y);
+  const Quadrature q = gaussLegendre01(4);
+  std::vector<double> expected;
+  std::vector<size_t> pixels;
+  for (int row = 0; row < scene.camera.pixelsY; ++row)
+    for (int col = 0; col < scene.camera.pixelsX; ++col) {
+      const SensorRect r = pixelOnSensor(scene.camera, col, row);
+      const double mx = 0.1 * (r.x2 - r.x1), my = 0.1 * (r.y2 - r.y1);
+      bool inside = true;
+      for (double x : {r.x1 - mx, r.x2 + mx})
+        for (double y : {r.y1 - my, r.y2 + my})
+          inside = inside && std::abs(x * (z - d) / d) < half && std::abs(y * (z - d) / d) < half;
+      if (!inside) continue;
+      double sum = 0.0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          const double x = r.x1 + (r.x2 - r.x1) * q.x[i], y = r.y1 + (r.y2 - r.y1) * q.x[j];
+          const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
+          sum += q.w[i] * q.w[j] * radiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
+        }
+      expected.push_back(sum);
+      pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
+    }
+  ASSERT_GT(pixels.size(), 300u) << "the square fills the middle of the image";
+
+  const RenderResult beams =
+      renderHere(scene, testing::scaledBeams(4'000'000, 400'000), 23, withEstimators(true, false));
+  std::vector<float> measured;
+  std::vector<double> sigma;
+  for (size_t p : pixels) {
+    measured.push_back(beams.image.irradiance[p]);
+    sigma.push_back(double(beams.image.irradianceError[p]));
+    ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+  }
+  expectPixels(measured, expected, sigma, std::string(name()) + " emitter square, light paths");
+
+  const uint64_t kPaths = testing::scaledBeams(1'000'000, 100'000);
+  const double n = double(kPaths) / double(scene.camera.pixelsX * scene.camera.pixelsY);
+  const double tolerance = 5.0 * (0.03 / std::sqrt(n) + 1.0 / n);
+  for (const bool lightPaths : {false, true}) {
+    const RenderResult result = renderHere(scene, kPaths, 24, withEstimators(lightPaths, true));
+    double worst = 0.0;
+    for (size_t i = 0; i < pixels.size(); ++i) {
+      const double value = result.image.irradiance[pixels[i]];
+      const double relative = std::abs(value / expected[i] - 1.0);
+      worst = std::max(worst, relative);
+      EXPECT_LE(relative, tolerance) << name() << (lightPaths ? " both" : " camera") << ": pixel " << pixels[i]
+                                     << " measured " << value << " W/m^2, expected " << expected[i];
+    }
+    std::printf("  %s, %s: %zu pixels, worst relative error %.2e (tolerance %.2e)\n", name(),
+                lightPaths ? "both" : "camera paths", pixels.size(), worst, tolerance);
+  }
 }
 
 // --- 2. plane mirror -------------------------------------------------------------
@@ -859,37 +984,49 @@ Scene everyObjectScene() {
   return scene;
 }
 
-void expectIdenticalRecords(bool connect, uint32_t count) {
-  const Scene scene = everyObjectScene();
-  CompileOptions options;
-  options.connect = connect;
-  const CompiledScene plan = compileScene(scene, 2025, options);
-  ASSERT_EQ(plan.device.constants.connect, connect ? 1u : 0u);
+// Records of paths [0, count) from the CPU reference and lavapipe; the
+// number that differ is reported, up to five of them as failures.
+struct RecordComparison {
+  uint64_t differ = 0, counted = 0, several = 0;
+  uint32_t most = 0;
+};
+RecordComparison compareRecords(const CompiledScene& plan, uint32_t count, const char* label) {
   VulkanTracer gpu(testing::sharedVulkan(), plan);
   CpuTracer cpu(plan, 1);
   const std::vector<device::BeamRecord> fromGpu = gpu.traceRecorded(0, count);
   const std::vector<device::BeamRecord> fromCpu = cpu.traceRecorded(0, count);
-  ASSERT_EQ(fromGpu.size(), size_t(count));
-  ASSERT_EQ(fromCpu.size(), size_t(count));
-  uint64_t differ = 0, counted = 0, several = 0;
-  uint32_t most = 0;
+  RecordComparison c;
+  if (fromGpu.size() != size_t(count) || fromCpu.size() != size_t(count)) {
+    ADD_FAILURE() << label << ": " << fromCpu.size() << " and " << fromGpu.size() << " records, not " << count;
+    return c;
+  }
   for (uint32_t i = 0; i < count; ++i) {
     const device::BeamRecord& a = fromCpu[i];
     const device::BeamRecord& b = fromGpu[i];
-    counted += a.pixel != device::kBeamMissed;
-    several += a.contributions > 1;
-    most = std::max(most, a.contributions);
+    c.counted += a.pixel != device::kBeamMissed;
+    c.several += a.contributions > 1;
+    c.most = std::max(c.most, a.contributions);
     if (a.pixel != b.pixel || a.bin != b.bin || a.ratioBits != b.ratioBits || a.contributions != b.contributions) {
-      if (++differ <= 5)
-        ADD_FAILURE() << (connect ? "connected" : "analog") << ": beam " << i << ": cpu (pixel " << a.pixel << ", bin "
-                      << a.bin << ", ratio bits " << a.ratioBits << ", contributions " << a.contributions << "), gpu (pixel "
-                      << b.pixel << ", bin " << b.bin << ", ratio bits " << b.ratioBits << ", contributions " << b.contributions
-                      << ")";
+      if (++c.differ <= 5)
+        ADD_FAILURE() << label << ": path " << i << ": cpu (pixel " << a.pixel << ", bin " << a.bin << ", ratio bits "
+                      << a.ratioBits << ", contributions " << a.contributions << "), gpu (pixel " << b.pixel << ", bin "
+                      << b.bin << ", ratio bits " << b.ratioBits << ", contributions " << b.contributions << ")";
     }
   }
-  std::printf("%s: %u beams, %llu differ, %llu counted (%.2f%%), %llu with several counts (most %u)\n",
-              connect ? "connected" : "analog", count, (unsigned long long)differ, (unsigned long long)counted,
-              100.0 * double(counted) / count, (unsigned long long)several, most);
+  std::printf("%s: %u paths, %llu differ, %llu counted (%.2f%%), %llu with several counts (most %u)\n", label, count,
+              (unsigned long long)c.differ, (unsigned long long)c.counted, 100.0 * double(c.counted) / count,
+              (unsigned long long)c.several, c.most);
+  return c;
+}
+
+void expectIdenticalRecords(bool connect, uint32_t count) {
+  const Scene scene = everyObjectScene();
+  CompileOptions options;
+  options.connect = connect;
+  options.cameraPaths = false;  // light paths alone
+  const CompiledScene plan = compileScene(scene, 2025, options);
+  ASSERT_EQ(plan.device.constants.connect, connect ? 1u : 0u);
+  const auto [differ, counted, several, most] = compareRecords(plan, count, connect ? "connected" : "analog");
   EXPECT_EQ(differ, 0u);
   // A meaningful share is counted, and connections make beams count more
   // than once.
@@ -899,6 +1036,37 @@ void expectIdenticalRecords(bool connect, uint32_t count) {
 }
 
 TEST(OpticsReferenceBeams, EveryShapeAndMaterialConnectedBeamByBeam) { expectIdenticalRecords(true, 200'000); }
+
+// Camera paths (with the light paths they leave over) through the same
+// objects, lit also by a spot, a disk and a rect light, which camera paths
+// see directly and sample at diffuse vertices: every record identical.
+TEST(OpticsReferenceBeams, EveryShapeAndMaterialCameraPathsPathByPath) {
+  Scene scene = everyObjectScene();
+  const Camera& c = scene.camera;
+  Light spot = testing::pointLight(toWorld(c, {0.02, 0.02, 0.03}), 1.0, *cieIlluminant("A"));
+  spot.type = LightType::Spot;
+  spot.direction = testing::directionToWorld(c, glm::normalize(glm::dvec3(-0.2, -0.3, 1.0)));
+  spot.coneHalfAngleDeg = 30.0;
+  Light disk = surfaceLight(LightType::Disk, toWorld(c, {-0.03, 0.02, 0.12}),
+                            testing::directionToWorld(c, glm::normalize(glm::dvec3(0.3, -0.2, -1.0))),
+                            1.0, makeBlackbodySpd(2700, 360, 830));
+  disk.radiusM = 0.01;
+  Light rect = surfaceLight(LightType::Rect, toWorld(c, {0.03, 0.0, 0.1}),
+                            testing::directionToWorld(c, glm::normalize(glm::dvec3(-0.5, 0.0, -1.0))),
+                            1.0, *cieIlluminant("F11"));
+  rect.sizeM = {0.02, 0.01};
+  rect.uAxis = testing::directionToWorld(c, glm::normalize(glm::dvec3(1.0, 0.0, -0.5)));
+  scene.lights.push_back(spot);
+  scene.lights.push_back(disk);
+  scene.lights.push_back(rect);
+  const CompiledScene plan = compileScene(scene, 2026);
+  ASSERT_EQ(plan.device.constants.estimators, device::kEstimatorLightPaths | device::kEstimatorCameraPaths);
+  const uint32_t count = uint32_t(testing::scaledBeams(200'000, 40'000));
+  const RecordComparison c2 = compareRecords(plan, count, "light and camera paths");
+  EXPECT_EQ(c2.differ, 0u);
+  EXPECT_GT(c2.counted, count / 4) << "most camera paths see something lit";
+  EXPECT_GT(c2.several, count / 100) << "paths with light samples at several diffuse vertices";
+}
 // Analog transport through a pinhole counts few beams (~0.3%): more of them.
 TEST(OpticsReferenceBeams, EveryShapeAndMaterialAnalogBeamByBeam) {
   expectIdenticalRecords(false, uint32_t(testing::scaledBeams(1'000'000, 200'000)));

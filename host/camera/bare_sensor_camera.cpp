@@ -42,6 +42,7 @@ class BareSensorModel final : public CameraModel {
     return SensorBox{centre - extent, centre + extent};
   }
   bool imageFlipped() const override { return false; }
+  std::optional<double> cameraPathEntranceAreaM2() const override { return std::nullopt; }
 };
 
 }  // namespace

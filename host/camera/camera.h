@@ -81,6 +81,12 @@ class CameraModel {
   // inverted on the sensor).
   virtual std::optional<SensorBox> reachOnSensor(const EmitterReach& emitter) const = 0;
   virtual bool imageFlipped() const = 0;
+  // Camera paths (shaders/camera_path.h) start at a uniform point of a
+  // pixel and of the model's entrance, a disk parallel to the sensor at
+  // frontZ (cameraConnectionPoint): the entrance's area, or nullopt for a
+  // model that starts none (the bare sensor, where light paths measure the
+  // irradiance they are best at).
+  virtual std::optional<double> cameraPathEntranceAreaM2() const = 0;
 };
 
 // The model of a camera with nothing before its sensor (camera/bare_sensor_camera.cpp).

@@ -65,6 +65,9 @@ class PinholeModel final : public CameraModel {
     return SensorBox{lo - blur, hi + blur};
   }
   bool imageFlipped() const override { return true; }
+  std::optional<double> cameraPathEntranceAreaM2() const override {
+    return M_PI * pinhole_.radiusM * pinhole_.radiusM;
+  }
 
  private:
   Pinhole pinhole_;

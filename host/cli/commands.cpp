@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "backend/device.h"
+#include "compile/estimators.h"
 #include "io/image.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -113,6 +114,7 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
   for (const auto& path : command.scenes) {
     RenderJob job;
     job.scene = loadScene(path);
+    if (command.wavelengthsPerBeam) job.scene.render.wavelengthsPerBeam = *command.wavelengthsPerBeam;
     if (!command.output) job.output = defaultOutput(path);
     else if (several || namesFolder(*command.output)) job.output = *command.output / (path.stem().string() + ".exr");
     else job.output = *command.output;
@@ -131,6 +133,8 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
     job.tracer.specialisedFeatures = command.general ? kSpecialiseNone : kSpecialiseAll;
     job.plan.aim = !command.noAim;
     job.plan.connect = !command.noConnect;
+    job.plan.lightPaths = command.estimator != "camera";
+    job.plan.cameraPaths = command.estimator != "light";
     job.plan.colourFromBins = !command.perBeamColour;
     if (!command.quiet) job.loop.log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     checkBeamRange(command.firstBeam, job.beamCount());
@@ -171,6 +175,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
     }
     const RenderResult result = session.render(job);
     if (!command.quiet) {
+      std::fprintf(stderr, "spectrace: estimator: %s\n", estimatorsDescription(result.plan.device.constants.estimators));
       for (const auto& light : result.plan.summaries) {
         if (!light.traced)
           std::fprintf(stderr, "spectrace: note: %s is never sampled: %s\n", light.label.c_str(),
@@ -187,10 +192,7 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
                        ? fmt::format(", after {} resumed from the state", result.beamsResumed).c_str()
                        : "");
       const uint64_t counted = result.summary.countedBeams;
-      // A beam counts once at the camera and, with connections, once more per bounce.
-      const auto& constants = result.plan.device.constants;
-      const uint64_t countsPerBeam = 1 + (constants.connect ? constants.maxBounces : 0);
-      const double countsBound = double(counted) * double(countsPerBeam);
+      const double countsBound = double(counted) * double(countsPerPathBound(result.plan.device.constants));
       std::fprintf(stderr,
                    "spectrace: %llu beams counted (%.3g%% of those traced); the largest pixel-bin holds %.4g beams; "
                    "rounding adds at most %.2g of the variance\n",

@@ -34,6 +34,8 @@ struct RenderCommand {
   bool perBeamColour = false;  // per-beam colour counters even where colour from bins applies
   bool noAim = false;          // analog emission: beams in every direction the lights emit
   bool noConnect = false;      // analog transport: no camera connections at diffuse surfaces
+  std::string estimator = "both";  // light, camera or both (compile/estimators.h)
+  std::optional<uint32_t> wavelengthsPerBeam;  // default: the scene's render.wavelengths_per_beam
   // The exact render state (film/film_state.h), rewritten at checkpoints
   // and at the end; one scene only.
   std::optional<std::filesystem::path> state;

@@ -103,6 +103,20 @@ int main(int argc, char** argv) {
   renderCmd->add_flag("--no-connect", render.noConnect,
                       "Analog transport (the reference): count only beams that reach the camera themselves, without "
                       "connecting diffuse surfaces to the camera");
+  renderCmd
+      ->add_option("--estimator", render.estimator,
+                   "Which paths count: light (beams from the lights, the reference), camera (paths from the pixels, "
+                   "sampling the lights at diffuse surfaces; needs a pinhole) or both, each path of light counted by "
+                   "one of them")
+      ->check(CLI::IsMember({"light", "camera", "both"}))
+      ->type_name("ESTIMATOR")
+      ->default_str("both");
+  renderCmd
+      ->add_option("--wavelengths-per-beam", render.wavelengthsPerBeam,
+                   "Wavelengths each camera path carries, stratified over its light's spectrum: 1, 2 or 4 "
+                   "(default: the scene's render.wavelengths_per_beam, else 4; beams carry one)")
+      ->check(CLI::IsMember({1u, 2u, 4u}))
+      ->type_name("K");
   renderCmd->add_flag("--per-beam-colour", render.perBeamColour,
                       "Sum each counted beam's own CMF values per pixel (the reference), even where colour from the "
                       "bins is exact in expectation (one spectral table)");

@@ -102,6 +102,7 @@ TEST(CompiledObjects, ConnectionsGiveFractionalWeightsAndOnlyWithDiffuseSurfaces
   EXPECT_EQ(plan.film.weightUnits, device::kWeightUnitsFractional);
   CompileOptions analog;
   analog.connect = false;
+  analog.cameraPaths = false;
   plan = compileScene(scene, 1, analog);
   EXPECT_EQ(plan.device.constants.connect, 0u);
   EXPECT_EQ(plan.film.weightUnits, 1u) << "analog transport keeps every weight 1";

@@ -10,6 +10,7 @@
 #include "camera/camera_frame.h"
 #include "colour/colour.h"
 #include "compile/compile_objects.h"
+#include "compile/estimators.h"
 #include "compile/shortcuts.h"
 #include "film/pixel_window.h"
 #include "kernel/beam_kernel.h"
@@ -270,8 +271,17 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   buildAliasColumns(compiled.device);
   cameraConstants(scene, seed, compiled.device);
   compileObjects(scene, options, compiled.device);
-  // Camera connections carry fractional weights.
-  if (compiled.device.constants.connect != 0) compiled.film.weightUnits = device::kWeightUnitsFractional;
+  const std::string cameraPathsUseless = cameraPathsUselessBecause(scene, compiled.device);
+  if (!options.lightPaths && !options.cameraPaths)
+    throw SceneError(fmt::format("{}: no estimator: light paths and camera paths are both off", sceneName(scene)));
+  if (!options.lightPaths && !cameraPathsUseless.empty())
+    throw SceneError(fmt::format("{}: camera paths alone cannot render this scene: {}; use --estimator light or both",
+                                 sceneName(scene), cameraPathsUseless));
+  compiled.device.constants.estimators = estimatorsFor(options, cameraPathsUseless);
+  compiled.device.constants.wavelengthsPerPath = scene.render.wavelengthsPerBeam;
+  const bool cameraPaths = (compiled.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
+  // Camera connections and camera paths carry fractional weights.
+  if (compiled.device.constants.connect != 0 || cameraPaths) compiled.film.weightUnits = device::kWeightUnitsFractional;
   if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);
   if (shortcutApplies(Shortcut::TrimPixels, options.trimPixels, scene))
     compiled.film.window = reachablePixelWindow(scene.camera, reaches);
@@ -279,6 +289,7 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
       sharedSpectralTableMissingBecause(compiled.device.lights, compiled.device.intervals).empty())
     developColourFromBins(scene, compiled);
   filmConstants(compiled.film, compiled.device.constants);
+  if (cameraPaths) setCameraPathWeights(scene, compiled);
   return compiled;
 }
 

@@ -98,6 +98,15 @@ struct CompileOptions {
   // estimator, which counts only beams that reach the camera themselves.
   // Not a shortcut: both are unbiased, and a test holds them to each other.
   bool connect = true;
+  // The estimators (shaders/camera_path.h): light paths (beams), camera
+  // paths (from the pixels, with next-event estimation), or both, each path
+  // of light then counted by one of them. Camera paths are kept only where
+  // they can count something (a pinhole camera, and an emitter with an area
+  // or a diffuse object with a light other than a laser). Not shortcuts:
+  // each is unbiased on the paths it counts, and tests hold them to each
+  // other and to closed forms.
+  bool lightPaths = true;
+  bool cameraPaths = true;
   // Bench only: every object primitive in one BVH leaf, so each ray tests
   // them all (brute force through the same kernel code).
   bool bruteForceObjects = false;
@@ -119,6 +128,8 @@ inline constexpr CompileOptionField kCompileOptionFields[] = {
     {"trim_pixels", &CompileOptions::trimPixels},
     {"aim", &CompileOptions::aim},
     {"connect", &CompileOptions::connect},
+    {"light_paths", &CompileOptions::lightPaths},
+    {"camera_paths", &CompileOptions::cameraPaths},
     {"brute_force_objects", &CompileOptions::bruteForceObjects},
 };
 static_assert(sizeof(CompileOptions) == std::size(kCompileOptionFields) * sizeof(bool),

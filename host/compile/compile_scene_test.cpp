@@ -73,7 +73,9 @@ TEST(AimedPlan, AimsOnlyWhereItNarrowsTheSampling) {
   Light panel = surfaceLight(LightType::Disk, {0.0, 0.0, 0.0505}, {0, 0, -1}, 1.0, *cieIlluminant("A"));
   panel.radiusM = 0.01;
   scene.lights = {spot, laser, inside, panel};
-  const CompiledScene plan = compileScene(scene, 1);
+  CompileOptions lightPaths;  // camera paths would make the film weighted for the disk
+  lightPaths.cameraPaths = false;
+  const CompiledScene plan = compileScene(scene, 1, lightPaths);
   ASSERT_EQ(plan.device.lights.size(), 4u);
   for (size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(plan.device.lights[i].aimed, 0u) << plan.summaries[i].label;
@@ -115,6 +117,7 @@ TEST(AimedPlan, NoAimIsTheAnalogPlan) {
   scene.lights = {disk, pointLight({0.0, 0.0, 1.05}, 2.0, *cieIlluminant("A"))};
   CompileOptions options;
   options.aim = false;
+  options.cameraPaths = false;  // they would weight the disk's counts
   const CompiledScene plan = compileScene(scene, 1, options);
   for (const auto& light : plan.device.lights) EXPECT_EQ(light.aimed, 0u);
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);

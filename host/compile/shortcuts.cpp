@@ -35,7 +35,9 @@ const char* shortcutPrecondition(Shortcut shortcut) {
              "spectra reach are hit";
     case Shortcut::TrimPixels:
       return "beams travel straight from the light to the camera (objects, if any, are absorbers), so they land "
-             "inside the lights' image through the pinhole (or a laser's footprint)";
+             "inside the lights' image through the pinhole (or a laser's footprint), and so do camera paths that "
+             "see a light; light paths give the same bits, camera paths (spread over the stored pixels only) the "
+             "same expectation";
     case Shortcut::ColourFromBins:
       return "a beam's wavelength is drawn independently of where it lands and keeps it (no object's effect "
              "depends on the wavelength: no varying reflectance, no dispersive glass), and every traced light "

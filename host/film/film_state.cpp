@@ -55,7 +55,8 @@ json toJson(const FilmFingerprint& f) {
           {"weight_units", f.weightUnits},
           {"seed", f.seed},
           {"specialisation", f.specialisation},
-          {"compile_options", f.compileOptions}};
+          {"compile_options", f.compileOptions},
+          {"wavelengths_per_beam", f.wavelengthsPerBeam}};
 }
 
 // Header refusals are "<file>: <json pointer>: <what is wrong>".
@@ -109,6 +110,9 @@ std::map<std::string, bool> compileOptionsOf(const HeaderFields& j, const FilmFi
   if (version >= 2) {
     const HeaderFields named = j.child("compile_options");
     for (const auto& [name, value] : named.object.items()) options[name] = named.flagOf(value, named.where(name));
+    // States from before camera paths traced light paths only.
+    options.try_emplace("light_paths", true);
+    options.try_emplace("camera_paths", false);
     return options;
   }
   // Version 1 recorded four options and the film's colour; the other two
@@ -123,6 +127,8 @@ std::map<std::string, bool> compileOptionsOf(const HeaderFields& j, const FilmFi
   options["colour_from_bins"] = f.colourFromBins;
   options["connect"] = true;
   options["brute_force_objects"] = false;
+  options["light_paths"] = true;
+  options["camera_paths"] = false;
   return options;
 }
 
@@ -145,6 +151,12 @@ FilmFingerprint fingerprintFromJson(const HeaderFields& j, uint32_t version) {
   f.seed = j.u64("seed");
   f.specialisation = j.u32("specialisation");
   f.compileOptions = compileOptionsOf(j, f, version);
+  if (jf::find(j.object, "wavelengths_per_beam")) {
+    f.wavelengthsPerBeam = j.u32("wavelengths_per_beam");
+    const uint32_t k = f.wavelengthsPerBeam;
+    if (k == 0 || k > device::kMaxWavelengthsPerPath || (k & (k - 1)) != 0)
+      j.source.fail(j.where("wavelengths_per_beam"), fmt::format("must be 1, 2 or 4 (got {})", k));
+  }
   return f;
 }
 

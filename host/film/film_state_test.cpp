@@ -210,6 +210,7 @@ TEST(FilmState, VersionOneStatesStillRead) {
   expected.trimSpectrum = false;
   expected.exactColour = read.fingerprint.exactColour || read.fingerprint.colourFromBins;
   expected.colourFromBins = read.fingerprint.colourFromBins;
+  expected.cameraPaths = false;  // states from before camera paths traced light paths only
   EXPECT_EQ(read.fingerprint.compileOptions, namedCompileOptions(expected));
 }
 

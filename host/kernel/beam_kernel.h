@@ -158,6 +158,7 @@ class BeamKernel {
  public:
   // The shared functions are public so tests can probe them one by one.
 #define SPECTRACE_SINGLE_CHUNK true  // `counters` holds every stored pixel
+#define SPECTRACE_WITH_CAMERA_PATHS  // the whole kernel (the shader has a module without them)
 #define SPECTRACE_RECORDING recording
 #include "trace.h"
 #include "profile.h"  // the bench's cost profile

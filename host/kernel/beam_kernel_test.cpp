@@ -79,6 +79,60 @@ TEST(WavelengthSampler, ChiSquareF11) {
   expectMatchesSpd(f11, 380, 780, 1.0, 2'000'000, 2);
 }
 
+// A camera path's k wavelengths (shaders/wavelengths.h): with k = 1 the
+// alias draw itself; with k = 4 each is a draw from the table (chi-square,
+// p > 0.01 at a fixed seed, as a lone draw's), and wavelength j lies in the
+// interval that holds u + j 2^64 / 4 by the table's integer CDF (equal
+// steps of the CDF: stratified).
+TEST(WavelengthSampler, PathWavelengthsAreEachDrawnFromTheTableAtEqualCdfSteps) {
+  const Spd f11 = cieIlluminant("F11")->clipped(360, 830);
+  SamplerFixture f(f11);
+  const device::LightRecord& light = f.lights[0];
+  for (uint64_t i = 0; i < 1000; ++i) {
+    const auto w = philoxWords(5, i, device::kRngBlockSpectral);
+    const auto one = f.kernel.drawPathWavelengths(light, joinWords(w[0], w[1]), uniformFloat(w[2]), 1);
+    ASSERT_EQ(one.lambda[0], f.draw(5, i));
+    ASSERT_EQ(one.share[0], 1.0f);
+    ASSERT_EQ(one.share[1], 0.0f);
+  }
+  constexpr uint32_t k = 4;
+  const double lo = 380, hi = 780, cellNm = 1.0;
+  const int cells = int(std::round((hi - lo) / cellNm));
+  std::vector<std::vector<uint64_t>> observed(k, std::vector<uint64_t>(cells, 0));
+  const uint64_t n = 1'000'000;
+  const auto& iv = f.table.intervals;
+  for (uint64_t i = 0; i < n; ++i) {
+    const auto w = philoxWords(6, i, device::kRngBlockSpectral);
+    const uint64_t u = joinWords(w[0], w[1]);
+    const auto path = f.kernel.drawPathWavelengths(light, u, uniformFloat(w[2]), k);
+    for (uint32_t j = 0; j < k; ++j) {
+      ASSERT_EQ(path.share[j], 0.25f);
+      const int c = int(std::floor((path.lambda[j] - lo) / cellNm));
+      ASSERT_TRUE(c >= 0 && c < cells) << path.lambda[j];
+      ++observed[j][c];
+      if (i < 10'000) {
+        const uint64_t rotated = u + uint64_t(j) * (uint64_t(1) << 62);
+        const uint32_t at = f.kernel.intervalOfUniform(light, rotated);
+        ASSERT_LE(iv[at].cdfLow, rotated);
+        if (at + 1 < iv.size()) ASSERT_LT(rotated, iv[at + 1].cdfLow);
+        ASSERT_GE(path.lambda[j], iv[at].lambda0);
+        ASSERT_LE(path.lambda[j], iv[at].lambda0 + iv[at].width);
+      }
+    }
+  }
+  const double total = f11.integral();
+  std::vector<double> probability(cells);
+  for (int c = 0; c < cells; ++c) {
+    const Spd part = f11.clipped(lo + c * cellNm, lo + (c + 1) * cellNm);
+    probability[c] = part.lambdaNm.empty() ? 0.0 : part.integral() / total;
+  }
+  for (uint32_t j = 0; j < k; ++j) {
+    const auto result = testing::chiSquareTest(observed[j], probability);
+    EXPECT_FALSE(result.impossibleHit) << "wavelength " << j;
+    EXPECT_GT(result.pValue, 0.01) << "wavelength " << j << ": chi2 = " << result.statistic;
+  }
+}
+
 TEST(WavelengthSampler, ChiSquareGaussianLaserLine) {
   const Spd line = makeLineSpd(532.0, 1.0);
   expectMatchesSpd(line, 529.0, 535.0, 0.05, 1'000'000, 3);

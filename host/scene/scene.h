@@ -30,6 +30,9 @@ struct RenderSettings {
   // Surfaces a beam may scatter from (objects only); a beam that meets one
   // more is dropped, a bias the reference tests bound.
   uint32_t maxBounces = 64;
+  // The wavelengths a camera path carries (shaders/wavelengths.h): 1, 2 or
+  // 4, stratified over each light's spectrum. (Beams carry one.)
+  uint32_t wavelengthsPerBeam = 4;
 };
 
 struct Scene {

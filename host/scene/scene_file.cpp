@@ -17,7 +17,7 @@
 //             transform{translate, rotate_deg, scale}}; material {type:
 //             absorber | diffuse | mirror (reflectance) | dielectric (glass |
 //             sellmeier{b, c_um2} | ior)}
-//   render    {beams, seed, max_bounces}                   optional
+//   render    {beams, seed, max_bounces, wavelengths_per_beam} optional
 //   output    {spectral}                                   optional
 #include "scene/scene.h"
 
@@ -179,12 +179,17 @@ Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, c
 }
 
 RenderSettings parseRender(const jf::Source& c, const Json& v, const std::string& p) {
-  checkObject(c, v, p, {"beams", "seed", "max_bounces"}, "render");
+  checkObject(c, v, p, {"beams", "seed", "max_bounces", "wavelengths_per_beam"}, "render");
   RenderSettings r;
   if (auto* x = find(v, "beams")) r.beams = jf::getU64(c, *x, child(p, "beams"), 1);
   if (auto* x = find(v, "seed")) r.seed = jf::getU64(c, *x, child(p, "seed"), 0);
   if (auto* x = find(v, "max_bounces"))
     r.maxBounces = uint32_t(jf::getInt(c, *x, child(p, "max_bounces"), 1, kMaxBounces));
+  if (auto* x = find(v, "wavelengths_per_beam")) {
+    const int k = jf::getInt(c, *x, child(p, "wavelengths_per_beam"), 1, int(device::kMaxWavelengthsPerPath));
+    if (k & (k - 1)) c.fail(child(p, "wavelengths_per_beam"), fmt::format("must be 1, 2 or 4 (got {})", k));
+    r.wavelengthsPerBeam = uint32_t(k);
+  }
   return r;
 }
 

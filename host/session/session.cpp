@@ -93,8 +93,12 @@ void prepareFolder(const std::filesystem::path& output) {
 }  // namespace
 
 FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) {
-  return fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256, job.scene.observer,
-                       job.seedValue(), job.tracer.specialisedFeatures, namedCompileOptions(job.plan));
+  FilmFingerprint f = fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256,
+                                    job.scene.observer, job.seedValue(), job.tracer.specialisedFeatures,
+                                    namedCompileOptions(job.plan));
+  const bool cameraPaths = (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
+  f.wavelengthsPerBeam = cameraPaths ? plan.device.constants.wavelengthsPerPath : 1;
+  return f;
 }
 
 RenderOptions RenderJob::renderOptions() const {
@@ -430,6 +434,10 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   } catch (const std::invalid_argument& e) {
     throw FilmStateError(fmt::format("the state's compile options cannot be used: {}", e.what()));
   }
+  // The wavelengths per camera path the state was rendered with (the
+  // command line may have set them over the scene's).
+  if (f.compileOptions.count("camera_paths") && f.compileOptions.at("camera_paths"))
+    job.scene.render.wavelengthsPerBeam = f.wavelengthsPerBeam;
   const CompiledScene plan = compileScene(job.scene, f.seed, job.plan);
   if (std::string field = fingerprintDifference(f, jobFingerprint(job, plan)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);

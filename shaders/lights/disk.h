@@ -16,4 +16,22 @@ FN float emitDiskBeam(LightRecord light, bool aimed, float ou, float ov, float d
   return emitLambertian(light, aimed, origin, du, dv, direction);
 }
 
+// Camera paths (light_arrival.h), as the rect's (rect.h): a uniform point
+// of the disk, cos / pi per steradian per watt towards `point`.
+FN float diskLightArrival(LightRecord light, vec3 point, float u, float v, OUT(vec3) lightPoint) {
+  lightPoint = diskOrigin(light, u, v);
+  return lambertianArrival(light, lightPoint, point);
+}
+
+// Camera paths: 1 / (pi area) per watt where the ray crosses the disk's
+// emitting side at a distance in (0, reach).
+FN float diskLightAlong(LightRecord light, vec3 origin, vec3 direction, float reach) {
+  vec2 onPlane;
+  if (!lambertianCrossing(light, origin, direction, reach, onPlane)) return 0.0f;
+  PRECISE float radiusSq = onPlane.x * onPlane.x + onPlane.y * onPlane.y;
+  if (!(radiusSq <= light.param0 * light.param0)) return 0.0f;
+  PRECISE float area = 3.14159265f * light.param0 * light.param0;
+  return 0.318309886f / area;  // 1 / pi over the area
+}
+
 #endif  // SPECTRACE_LIGHTS_DISK_H

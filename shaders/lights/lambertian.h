@@ -45,4 +45,27 @@ FN float emitLambertian(LightRecord light, bool aimed, vec3 origin, float du, fl
   return ratio;
 }
 
+// Camera paths (the disk and rect units): per watt and steradian, what a
+// point `lightPoint` drawn uniformly over the emitter sends towards
+// `point`: cos(theta) / pi on the emitting side, 0 behind it.
+FN float lambertianArrival(LightRecord light, vec3 lightPoint, vec3 point) {
+  PRECISE vec3 away = point - lightPoint;
+  PRECISE float cosTheta = dot3(away, light.axis) / sqrt(dot3(away, away));
+  return cosTheta > 0.0f ? cosTheta * 0.318309886f : 0.0f;  // 1 / pi
+}
+
+// Where a ray crosses the emitter's plane from its emitting side, at a
+// distance in (0, reach): the crossing in (tangent, bitangent) about the
+// centre.
+FN bool lambertianCrossing(LightRecord light, vec3 origin, vec3 direction, float reach, OUT(vec2) onPlane) {
+  onPlane = vec2(0.0f, 0.0f);
+  float facing = dot3(direction, light.axis);
+  if (!(facing < 0.0f)) return false;
+  PRECISE float t = dot3(light.position - origin, light.axis) / facing;
+  if (!(t > 0.0f) || !(t < reach)) return false;
+  PRECISE vec3 offset = origin + direction * t - light.position;
+  onPlane = vec2(dot3(offset, light.tangent), dot3(offset, light.bitangent));
+  return true;
+}
+
 #endif  // SPECTRACE_LIGHTS_LAMBERTIAN_H

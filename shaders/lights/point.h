@@ -10,4 +10,11 @@ FN float emitPointBeam(LightRecord light, bool aimed, float du, float dv, OUT(ve
   return 1.0f;
 }
 
+// Camera paths (light_arrival.h): isotropic, so 1 / (4 pi) of each watt
+// per steradian towards any point.
+FN float pointLightArrival(LightRecord light, OUT(vec3) lightPoint) {
+  lightPoint = light.position;
+  return 0.0795774715f;  // 1 / (4 pi)
+}
+
 #endif  // SPECTRACE_LIGHTS_POINT_H

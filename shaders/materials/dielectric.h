@@ -21,6 +21,11 @@ FN float refractiveIndexAt(Material m, float lambda) {
   return sqrt(n2);
 }
 
+// Whether the index depends on the wavelength (any Sellmeier C set).
+FN bool materialDisperses(Material m) {
+  return m.type == kMaterialDielectric && (m.sellmeierC.x != 0.0f || m.sellmeierC.y != 0.0f || m.sellmeierC.z != 0.0f);
+}
+
 // Unpolarised Fresnel reflectance for eta = n_incident / n_transmitted.
 FN float fresnelDielectric(float cosIncident, float cosTransmitted, float eta) {
   PRECISE float rs = (eta * cosIncident - cosTransmitted) / (eta * cosIncident + cosTransmitted);
