@@ -38,5 +38,14 @@ refused(resumed_state_onto_scene "--state .*scene.json is the input file" ${rend
 refused(output_onto_scene "output .*scene.json is the input file" ${render} -o "${DIR}/scene.json")
 refused(merge_state_onto_input "--state .*in.state is the input file" merge "${DIR}/in.state" -q -o "${DIR}/m.exr" --state "${DIR}/in.state")
 refused(merge_output_onto_input "--state .*in.exr is also this run's output" merge "${DIR}/in.state" -q -o "${DIR}/in.exr" --state "${DIR}/in.exr")
+# A link is replaced by the atomic write rather than written through (a link
+# to /dev/stdout became a regular file): refused, the link and its target kept.
+file(CREATE_LINK "${DIR}/in.exr" "${DIR}/link.state" SYMBOLIC)
+refused(state_onto_link "--state .*link.state is a symbolic link \\(to .*in.exr\\)" ${render} -o "${DIR}/a.exr" --state "${DIR}/link.state")
+if(NOT IS_SYMLINK "${DIR}/link.state")
+  message(FATAL_ERROR "state_onto_link: the link was replaced")
+endif()
+file(CREATE_LINK "${DIR}/nowhere.exr" "${DIR}/dangling.exr" SYMBOLIC)
+refused(output_onto_dangling_link "output .*dangling.exr is a symbolic link" ${render} -o "${DIR}/dangling.exr")
 refused(batch_preview_onto_job_file "PNG preview .*jobs.png is the input file .*jobs.png" batch "${DIR}/jobs.png" -q --device cpu)
 message(STATUS "every output onto an input was refused, and the inputs are unchanged")

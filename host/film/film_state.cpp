@@ -41,6 +41,7 @@ std::array<unsigned char, kDigestBytes> sha256(const unsigned char* data, size_t
 json toJson(const FilmFingerprint& f) {
   return {{"scene_file", f.sceneFile},
           {"scene_sha256", f.sceneSha256},
+          {"referenced_files_sha256", f.referencedFilesSha256},
           {"observer", f.observer},
           {"spectrum_min_nm", f.lambdaMinNm},
           {"spectrum_max_nm", f.lambdaMaxNm},
@@ -136,6 +137,7 @@ FilmFingerprint fingerprintFromJson(const HeaderFields& j, uint32_t version) {
   FilmFingerprint f;
   f.sceneFile = j.text("scene_file");
   f.sceneSha256 = j.text("scene_sha256");
+  if (jf::find(j.object, "referenced_files_sha256")) f.referencedFilesSha256 = j.text("referenced_files_sha256");
   f.observer = j.text("observer");
   f.lambdaMinNm = j.number("spectrum_min_nm");
   f.lambdaMaxNm = j.number("spectrum_max_nm");

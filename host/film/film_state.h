@@ -32,6 +32,9 @@ struct BeamRange {
 struct FilmFingerprint {
   std::string sceneFile;     // as given, for messages and for developing a merge
   std::string sceneSha256;   // of the scene file's bytes
+  // Of the files the scene names (Scene::referencedFilesSha256; empty when
+  // none, as in states written before it).
+  std::string referencedFilesSha256;
   std::string observer;
   double lambdaMinNm = 0.0, lambdaMaxNm = 0.0;
   uint32_t bins = 0;

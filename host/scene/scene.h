@@ -46,6 +46,9 @@ struct Scene {
   bool outputSpectral = false;
   std::filesystem::path sourcePath;  // empty for scenes built in code
   std::string sourceSha256;          // hex digest of the file's bytes
+  // Hex digest of the files the scene names (CSV spectra and reflectances,
+  // OBJ meshes; referencedFilesSha256), empty when it names none.
+  std::string referencedFilesSha256;
 };
 
 // Reads, parses and validates a scene file. Relative CSV and OBJ paths
@@ -77,5 +80,11 @@ std::string readSceneText(const std::filesystem::path& file);
 nlohmann::json readSceneJson(const std::filesystem::path& file);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
 std::string sceneSha256Hex(std::string_view bytes);
+// The digest of the files `scene` names, in scene order (each light's CSV
+// spectrum, then each object's OBJ mesh and reflectance CSV): SHA-256 of
+// their digests, one a line; empty when it names none. A state's
+// fingerprint holds it, so merges, resumes and MPI ranks never join films
+// traced from other meshes or spectra under one scene file.
+std::string referencedFilesSha256(const Scene& scene);
 
 }  // namespace spectrace

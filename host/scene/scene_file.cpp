@@ -250,6 +250,7 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
   if (auto* x = find(root, "output")) scene.outputSpectral = parseOutputSpectral(c, *x, "/output");
   scene.sourceSha256 = std::move(sha256);
   validateScene(scene, checker);
+  scene.referencedFilesSha256 = referencedFilesSha256(scene);
   return scene;
 }
 
@@ -258,6 +259,26 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
 Scene parseScene(const std::string& jsonText, const fs::path& file) {
   const Json root = jf::parseJson(sourceFor(file), jsonText);
   return parseRoot(root, file, sceneSha256Hex(jsonText));
+}
+
+std::string referencedFilesSha256(const Scene& scene) {
+  std::vector<fs::path> files;
+  for (const Light& light : scene.lights) files.push_back(light.spdFile);
+  for (const SceneObject& object : scene.objects) {
+    files.push_back(object.shape.meshFile);
+    files.push_back(object.material.reflectanceFile);
+  }
+  std::erase_if(files, [](const fs::path& f) { return f.empty(); });
+  if (files.empty()) return "";
+  std::string digests;
+  for (const fs::path& f : files) {
+    try {
+      digests += sceneSha256Hex(readInputFile(f, "file named by the scene", uint64_t(1) << 30)) + "\n";
+    } catch (const InputFileError& e) {  // changed since it was parsed
+      throw SceneError(fmt::format("{}: {}", scene.sourcePath.empty() ? "<scene>" : scene.sourcePath.string(), e.what()));
+    }
+  }
+  return sceneSha256Hex(digests);
 }
 
 Scene parseSceneJson(const nlohmann::json& root, const fs::path& file) {

@@ -98,6 +98,7 @@ FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) 
                                     namedCompileOptions(job.plan));
   const bool cameraPaths = (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
   f.wavelengthsPerBeam = cameraPaths ? plan.device.constants.wavelengthsPerPath : 1;
+  f.referencedFilesSha256 = job.scene.referencedFilesSha256;
   return f;
 }
 
@@ -198,6 +199,16 @@ void checkOutputFile(const OutputFile& output, const std::vector<std::filesystem
   namespace fs = std::filesystem;
   const std::string name = output.role + " " + output.path.string();
   std::error_code ec;
+  // Outputs are written by replacing the file (atomic rename), which would
+  // replace a link rather than write through it (a link to /dev/stdout
+  // would become a regular file).
+  if (fs::is_symlink(fs::symlink_status(output.path, ec)) && !ec) {
+    std::error_code er;
+    const fs::path target = fs::read_symlink(output.path, er);
+    throw OutputPathError(fmt::format("{} is a symbolic link (to {}); outputs replace their file, so name the file "
+                                      "itself",
+                                      name, er ? std::string("an unreadable target") : target.string()));
+  }
   const fs::file_status st = fs::status(output.path, ec);
   if (!ec && fs::exists(st)) {
     for (const auto& input : inputs) {
@@ -422,6 +433,10 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   if (job.scene.sourceSha256 != f.sceneSha256)
     throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
                                      f.sceneFile, job.scene.sourceSha256, f.sceneSha256));
+  if (job.scene.referencedFilesSha256 != f.referencedFilesSha256)
+    throw FilmStateError(fmt::format("a file the scene {} names (an OBJ mesh or CSV) has changed since the state was "
+                                     "written (referenced_files_sha256 {} against {})",
+                                     f.sceneFile, job.scene.referencedFilesSha256, f.referencedFilesSha256));
   job.output = output;
   job.outputs.spectral = spectral;
   checkOutputPath(job);  // the scene and its CSV spectra are inputs too
