@@ -87,6 +87,10 @@ class CameraModel {
   // model that starts none (the bare sensor, where light paths measure the
   // irradiance they are best at).
   virtual std::optional<double> cameraPathEntranceAreaM2() const = 0;
+  // The smallest angle (its sine) under which a light may see the entrance
+  // (entranceSphere) for the model to tell beams that pass from beams that
+  // miss; 0: any.
+  virtual double smallestEntranceSine() const = 0;
 };
 
 // The model of a camera with nothing before its sensor (camera/bare_sensor_camera.cpp).

@@ -32,6 +32,22 @@ std::string sceneName(const Scene& scene) {
   return scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
 }
 
+// Refuses a light that sees the camera's entrance under less than the
+// smallest angle its model resolves (CameraModel::smallestEntranceSine).
+void checkEntranceResolved(const Scene& scene, const Light& light, const LightReach& reach, const AimTarget& target) {
+  const double smallest = scene.camera.model->smallestEntranceSine();
+  if (reach.collimated || !(smallest > 0.0)) return;  // a laser's beams run along its axis: no angle to resolve
+  double farthest = glm::length(reach.centre - target.centre);
+  for (const glm::dvec3& corner : reach.corners) farthest = std::max(farthest, glm::length(corner - target.centre));
+  if (!(farthest > 0.0) || target.radius / farthest >= smallest) return;
+  throw SceneError(fmt::format(
+      "{}: /camera: the camera's entrance ({:g} m across) seen from {} ({:g} m away) subtends {:.2g} rad, below the "
+      "{:g} rad float positions and directions resolve; the image would be decided by rounding. Use an entrance of "
+      "at least {:.2g} m radius, or bring the light closer",
+      sceneName(scene), 2.0 * target.radius, light.label, farthest, target.radius / farthest, smallest,
+      smallest * farthest));
+}
+
 // The whole sensor and spectrum, before any trimming.
 FilmLayout sensorFilm(const Scene& scene, bool exactColour) {
   const Camera& camera = scene.camera;
@@ -101,6 +117,7 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
       summary.aimed = record.aimed != 0;
       device.lights.push_back(record);
       reaches.push_back(unit.reach(light, local));
+      checkEntranceResolved(scene, light, reaches.back(), target);
       // Selection in proportion to power x largest weight: each light's
       // weight ratios are then <= 1 and its beams share one scale.
       selectWeights.push_back(summary.tracedPowerW * summary.largestWeight);

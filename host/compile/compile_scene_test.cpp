@@ -25,6 +25,29 @@ Scene pinholeScene(double distanceM, double radiusM) {
 // 1 - cos(asin(s)).
 double oneMinusCos(double s) { return s * s / (1.0 + std::sqrt(1.0 - s * s)); }
 
+TEST(AimedPlan, AnEntranceFloatsCannotResolveIsRefused) {
+  // A light sees a 1e-9 m pinhole from 1.1 m under 9e-10 rad: where its
+  // beams cross the aperture is rounding (about 6.6e-8 m at 1.1 m), and the
+  // image came out 85 times too bright. The limit is 4e-6 rad (ten times
+  // the aiming slack): 4.4e-6 m at 1.1 m.
+  for (const double radius : {1e-9, 4.3e-6}) {
+    Scene scene = pinholeScene(0.024, radius);
+    scene.lights = {pointLight({0.0, 0.0, 1.124}, 1.0, *cieIlluminant("D65"))};
+    try {
+      compileScene(scene, 1);
+      ADD_FAILURE() << "a pinhole of " << radius << " m at 1.1 m was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("/camera: the camera's entrance"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("below the 4e-06 rad"), std::string::npos) << e.what();
+    }
+  }
+  for (const double radius : {4.5e-6, 25e-6}) {
+    Scene scene = pinholeScene(0.024, radius);
+    scene.lights = {pointLight({0.0, 0.0, 1.124}, 1.0, *cieIlluminant("D65"))};
+    EXPECT_NO_THROW(compileScene(scene, 1)) << radius;
+  }
+}
+
 TEST(AimedPlan, PointLightSamplesTheConeOfThePinhole) {
   // A point light 1 m in front of a 0.5 mm pinhole at 50 mm: the cone holding
   // the pinhole's sphere has 1 - cos = h with sin = r / d, and the largest
