@@ -7,13 +7,20 @@
 // Light tracing's camera connection (pbrt-v4's lightpath, Mitsuba 3's
 // ptracer): from a diffuse vertex at `point`, lit from the side `facing`,
 // to a uniform point of the camera model's entrance (camera.h: a pinhole's
-// disk, a bare sensor's own area). The beam's flux times the BRDF
-// (rho / pi), the geometry term and the entrance's area is what reaches
-// that point, and it goes on straight to the sensor. Counted when nothing
-// stands in between.
-FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float weight, float lambda, uint bin,
-                        INOUT(BeamTally) tally) {
-  if (!(weight > 0.0f) || !(point.z > constants.cameraFrontZ)) return;
+// disk, a bare sensor's own area). The beam's flux (`ratio` times each
+// wavelength's share) times the BRDF (rho / pi), the geometry term and the
+// entrance's area is what reaches that point, and it goes on straight to
+// the sensor. Counted when nothing stands in between.
+FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float ratio, WavelengthFactors rho,
+                        PathWavelengths w, INOUT(BeamTally) tally) {
+  WavelengthFactors weight;
+  bool any = false;
+  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
+    PRECISE float carried = rho.value[j] * ratio * w.share[j];
+    weight.value[j] = carried;
+    any = any || carried > 0.0f;
+  }
+  if (!any || !(point.z > constants.cameraFrontZ)) return;
   uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce + 1u);
   float area;
   vec3 target = cameraConnectionPoint(uniformFromWord(words.x), uniformFromWord(words.y), area);
@@ -30,8 +37,12 @@ FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing
   vec3 start = offsetOffSurface(point, facing);
   PRECISE float reach = distance * 0.99999f;
   if (intersectObjects(start, direction, reach, true, blocker)) return;
-  PRECISE float ratio = weight * (1.0f / 3.14159265358979f) * cosSurface * cosCamera * area / distanceSq;
-  contribute(tally, cell, bin, lambda, ratio, uniformFromWord(words.z));
+  WavelengthFactors count;
+  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
+    PRECISE float c = weight.value[j] * (1.0f / 3.14159265358979f) * cosSurface * cosCamera * area / distanceSq;
+    count.value[j] = c;
+  }
+  contributeCounts(tally, cell, w, count, uniformFromWord(words.z));
 }
 
 #endif  // SPECTRACE_CAMERA_CONNECTION_H

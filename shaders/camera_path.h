@@ -53,16 +53,15 @@ FN uvec2 cameraPathCell(uint64_t pathIndex) {
 }
 
 // Counts `ratio` times each carried wavelength's share and its `factor`
-// (e.g. its reflectance) into the film at `cell`.
-// (The loop runs to k, known at run time only, so the shader compiler keeps
-// one copy of the count instead of unrolling four.)
+// (e.g. its reflectance) into the film at `cell`, as one event.
 FN void contributeWavelengths(INOUT(BeamTally) tally, uvec2 cell, PathWavelengths w, WavelengthFactors factor,
                               float ratio, float rounding) {
-  for (uint j = 0u; j < constants.wavelengthsPerPath; ++j) {
-    if (!(w.share[j] > 0.0f)) continue;
-    PRECISE float count = ratio * factor.value[j] * w.share[j];
-    contribute(tally, cell, w.bin[j], w.lambda[j], count, rounding);
+  WavelengthFactors count;
+  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
+    PRECISE float c = ratio * factor.value[j] * w.share[j];
+    count.value[j] = c;
   }
+  contributeCounts(tally, cell, w, count, rounding);
 }
 
 // Next-event estimation at a diffuse vertex `at` of reflectance rho (per
@@ -101,12 +100,6 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
   uvec4 spectral = philox4x32(constants.seed, pathIndex, kRngBlockCameraSpectral);
   PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
                                           constants.wavelengthsPerPath);
-  WavelengthFactors ones;
-  WavelengthFactors rho;
-  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
-    ones.value[j] = 1.0f;
-    rho.value[j] = 0.0f;
-  }
   uvec2 cell = cameraPathCell(pathIndex);
   vec3 onSensor = sensorPointInCell(cell, uniformFromWord(start.x), uniformFromWord(start.y), true);
   float apertureArea;
@@ -135,7 +128,7 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
     // After a diffuse vertex the light sample counted the emitter instead.
     if (!afterDiffuse && lightSeenDirectly(light)) {
       float radiance = lightAlongRay(light, origin, direction, reach);
-      if (radiance > 0.0f) contributeWavelengths(tally, cell, w, ones, throughput * radiance, rounding);
+      if (radiance > 0.0f) contributeCounts(tally, cell, w, sharesTimes(w, throughput * radiance), rounding);
     }
     if (!metObject || metCamera || vertex == constants.maxBounces) return;
     Primitive surface = readPrimitive(hit.primitive);
@@ -149,32 +142,20 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
     at.facing = at.fromOutside ? n : -n;
     uvec4 words = philox4x32(constants.seed, pathIndex, kRngBlockCameraVertex + 2u * vertex);
     rounding = uniformFromWord(words.w);
-    if (material.type == kMaterialDiffuse || material.type == kMaterialMirror) {
-      for (uint j = 0u; j < constants.wavelengthsPerPath; ++j)
-        rho.value[j] = w.share[j] > 0.0f ? reflectanceAt(material, w.lambda[j]) : 0.0f;
-    }
     if (material.type == kMaterialDiffuse) {
+      WavelengthFactors rho = reflectancesAt(material, w);
       cameraPathLightSample(light, at, rho, throughput,
                             philox4x32(constants.seed, pathIndex, kRngBlockCameraVertex + 2u * vertex + 1u), cell, w,
                             tally);
       // Cosine-weighted on: the BRDF times the cosine over the density is
       // rho, which the roulette keeps (surviveReflectance).
       if (!surviveReflectance(rho, uniformFromWord(words.x), w)) return;
-      vec3 tangent;
-      vec3 bitangent;
-      frameAround(at.facing, tangent, bitangent);
-      direction = toFrame(sampleCosineHemisphere(uniformFromWord(words.y), uniformFromWord(words.z)), tangent, bitangent,
-                          at.facing);
-      origin = offsetOffSurface(at.point, at.facing);
+      bounceDiffusely(at, words, origin, direction);
       afterDiffuse = true;
     } else if (material.type == kMaterialMirror) {
-      if (!surviveReflectance(rho, uniformFromWord(words.x), w)) return;
-      direction = reflected(direction, at.facing);
-      origin = offsetOffSurface(at.point, at.facing);
-      afterDiffuse = false;
+      if (!scatterMirror(material, at, words, w, origin, direction, afterDiffuse)) return;
     } else if (material.type == kMaterialDielectric) {
-      if (materialDisperses(material) && constants.wavelengthsPerPath > 1u) keepHeroOnly(w, constants.wavelengthsPerPath);
-      scatterDielectric(material, at, words, w.lambda[0], origin, direction, afterDiffuse);
+      scatterDielectric(material, at, words, w, origin, direction, afterDiffuse);
       // Radiance over the index squared is what crossing keeps: seen from
       // this side of the surface it is eta^2 (eta = this side's index over
       // the other's) of what it is beyond.

@@ -371,7 +371,7 @@ struct TraceConstants {
   // Camera paths: the stored window's sensor area times the aperture's
   // area over the aperture distance squared (m^2; camera_path.h).
   float cameraPathScale;
-  uint wavelengthsPerPath;  // k: the wavelengths a camera path carries (wavelengths.h)
+  uint wavelengthsPerPath;  // k: the wavelengths a beam or camera path carries (wavelengths.h)
   uint padding2;
 };
 

@@ -14,6 +14,7 @@ struct SurfaceHit {
   bool fromOutside;  // the beam came from the side the normal points to
 };
 
+#include "wavelengths.h"
 #include "materials/surface_shared.h"
 #include "materials/diffuse.h"
 #include "materials/mirror.h"
@@ -22,19 +23,17 @@ struct SurfaceHit {
 // Whether the material ends every beam that meets it.
 FN bool materialEndsEveryBeam(Material material) { return material.type == kMaterialAbsorber; }
 
-// What the material does to the beam (origin, direction) at `hit`, through
-// its kind's unit; false: the beam ends there. `words` are the bounce's
-// Philox block (kRngBlockBounce + 2 bounce).
+// What the material does to the beam (origin, direction, the wavelengths
+// it carries) at `hit`, through its kind's unit; false: the beam ends
+// there. `words` are the bounce's Philox block (kRngBlockBounce + 2 bounce).
 FN bool scatterAtSurface(Material material, SurfaceHit hit, uvec4 words, uint64_t beamIndex, uint bounce, float ratio,
-                         float lambda, uint bin, INOUT(BeamTally) tally, INOUT(vec3) origin, INOUT(vec3) direction,
+                         INOUT(PathWavelengths) w, INOUT(BeamTally) tally, INOUT(vec3) origin, INOUT(vec3) direction,
                          INOUT(bool) afterDiffuse) {
   if (material.type == kMaterialDiffuse)
-    return scatterDiffuse(material, hit, words, beamIndex, bounce, ratio, lambda, bin, tally, origin, direction,
-                          afterDiffuse);
-  if (material.type == kMaterialMirror)
-    return scatterMirror(material, hit, words, lambda, origin, direction, afterDiffuse);
+    return scatterDiffuse(material, hit, words, beamIndex, bounce, ratio, w, tally, origin, direction, afterDiffuse);
+  if (material.type == kMaterialMirror) return scatterMirror(material, hit, words, w, origin, direction, afterDiffuse);
   if (material.type == kMaterialDielectric)
-    return scatterDielectric(material, hit, words, lambda, origin, direction, afterDiffuse);
+    return scatterDielectric(material, hit, words, w, origin, direction, afterDiffuse);
   return false;
 }
 

@@ -103,49 +103,72 @@ FN WideCount wideFixedPoint(float x, float u) {
   return w;
 }
 
-// Adds a beam that hit pixel `cell` (column, row of the sensor) in stored bin
-// `bin` to the film: its weight to the bin, its own CMF values (exact
-// colour) and, in a weighted film, its squared weight, through the
-// includer's addCount and addWideCount, in the layout of device_shared.h
-// (countersPerPixelOf). A plain film counts hits (every ratio is 1); a
-// weighted one adds wide counts (wideFixedPoint). Returns false for a pixel
-// outside the stored window, which the host proves unreachable (the tests
-// against the whole sensor would show a disproof); the guard keeps such a
-// beam in bounds.
-FN bool countBeam(uvec2 cell, uint bin, float lambda, float ratio, float spareUniform) {
+// Where pixel `cell` (column, row of the sensor) keeps its counters: its
+// histogram chunk and its first counter there, in the layout of
+// device_shared.h (countersPerPixelOf). False for a pixel outside the
+// stored window, which the host proves unreachable (the tests against the
+// whole sensor would show a disproof); the guard keeps such a count in
+// bounds.
+FN bool storedCounters(uvec2 cell, OUT(uint) chunk, OUT(uint) base) {
   uint windowRow = cell.y - constants.windowY0;  // wraps to large when row < windowY0
   uint windowColumn = cell.x - constants.windowX0;
-  bool inside = windowRow < constants.windowHeight && windowColumn < constants.windowWidth;
-  if (inside) {
-    uint stored = windowRow * constants.windowWidth + windowColumn;
-    // One chunk (the usual case, and always on the CPU) needs no division.
-    uint chunk = SPECTRACE_SINGLE_CHUNK ? 0u : stored / constants.pixelsPerChunk;
-    uint base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
-    bool exactColour = SPECTRACE_EXACT_COLOUR;
-    bool weighted = SPECTRACE_WEIGHTED;
-    if (weighted) {
-      addWideCount(chunk, base + 2u * bin, wideFixedPoint(ratio, spareUniform));
-    } else {
-      addCount(chunk, base + bin, 1ul);
-    }
-    if (exactColour) {
-      PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
-      uint colour = base + colourCounterOffset(constants.bins, weighted);
-      if (weighted) {
-        addWideCount(chunk, colour, wideFixedPoint(cmf.x, spareUniform));
-        addWideCount(chunk, colour + 2u, wideFixedPoint(cmf.y, spareUniform));
-        addWideCount(chunk, colour + 4u, wideFixedPoint(cmf.z, spareUniform));
-      } else {
-        addCount(chunk, colour, colourFixedPoint(cmf.x, spareUniform));
-        addCount(chunk, colour + 1u, colourFixedPoint(cmf.y, spareUniform));
-        addCount(chunk, colour + 2u, colourFixedPoint(cmf.z, spareUniform));
-      }
-    }
-    if (weighted)
-      addWideCount(chunk, base + squaredWeightCounterOffset(constants.bins, exactColour),
-                   wideFixedPoint(ratio * ratio, spareUniform));
+  chunk = 0u;
+  base = 0u;
+  if (!(windowRow < constants.windowHeight && windowColumn < constants.windowWidth)) return false;
+  uint stored = windowRow * constants.windowWidth + windowColumn;
+  // One chunk (the usual case, and always on the CPU) needs no division.
+  chunk = SPECTRACE_SINGLE_CHUNK ? 0u : stored / constants.pixelsPerChunk;
+  base = (stored - chunk * constants.pixelsPerChunk) * constants.countersPerPixel;
+  return true;
+}
+
+// Adds one count of weight `ratio` at wavelength `lambda` (stored bin
+// `bin`) to a pixel's counters: the weight to the bin and its CMF values
+// (exact colour), through the includer's addCount and addWideCount. A
+// plain film counts hits (every ratio is 1); a weighted one adds wide
+// counts (wideFixedPoint).
+FN void countInBin(uint chunk, uint base, uint bin, float lambda, float ratio, float spareUniform) {
+  bool exactColour = SPECTRACE_EXACT_COLOUR;
+  bool weighted = SPECTRACE_WEIGHTED;
+  if (weighted) {
+    addWideCount(chunk, base + 2u * bin, wideFixedPoint(ratio, spareUniform));
+  } else {
+    addCount(chunk, base + bin, 1ul);
   }
-  return inside;
+  if (exactColour) {
+    PRECISE vec3 cmf = cmfAtWavelength(lambda) * ratio;
+    uint colour = base + colourCounterOffset(constants.bins, weighted);
+    if (weighted) {
+      addWideCount(chunk, colour, wideFixedPoint(cmf.x, spareUniform));
+      addWideCount(chunk, colour + 2u, wideFixedPoint(cmf.y, spareUniform));
+      addWideCount(chunk, colour + 4u, wideFixedPoint(cmf.z, spareUniform));
+    } else {
+      addCount(chunk, colour, colourFixedPoint(cmf.x, spareUniform));
+      addCount(chunk, colour + 1u, colourFixedPoint(cmf.y, spareUniform));
+      addCount(chunk, colour + 2u, colourFixedPoint(cmf.z, spareUniform));
+    }
+  }
+}
+
+// A weighted film's squared weight of one event (a beam or path reaching
+// the pixel once, with all the wavelengths it carries): the square of
+// their summed weight, so the film's error estimate sees the wavelengths
+// of one event as the one sample they are.
+FN void countSquaredWeight(uint chunk, uint base, float square, float spareUniform) {
+  if (SPECTRACE_WEIGHTED)
+    addWideCount(chunk, base + squaredWeightCounterOffset(constants.bins, SPECTRACE_EXACT_COLOUR),
+                 wideFixedPoint(square, spareUniform));
+}
+
+// Adds a beam that hit pixel `cell` in stored bin `bin` to the film, with
+// its squared weight; false outside the stored window (storedCounters).
+FN bool countBeam(uvec2 cell, uint bin, float lambda, float ratio, float spareUniform) {
+  uint chunk;
+  uint base;
+  if (!storedCounters(cell, chunk, base)) return false;
+  countInBin(chunk, base, bin, lambda, ratio, spareUniform);
+  countSquaredWeight(chunk, base, ratio * ratio, spareUniform);
+  return true;
 }
 
 // The bin among the stored bins of a wavelength: its bin of the full

@@ -12,6 +12,7 @@
 #include "light_arrival.h"
 #include "camera.h"
 #include "sensor.h"
+#include "wavelengths.h"
 #include "objects.h"
 #include "transport.h"
 #ifdef SPECTRACE_WITH_CAMERA_PATHS
@@ -22,7 +23,10 @@
 // `tally`. Every random number comes from (seed, beamIndex, block), so the
 // result is independent of batching, threads and device.
 //
-// Without objects the wavelength is drawn last, and only for a beam that
+// A beam carries constants.wavelengthsPerPath wavelengths (wavelengths.h),
+// each counted with its share of the beam's weight.
+//
+// Without objects the wavelengths are drawn last, and only for a beam that
 // reaches the camera: nothing between the light and the sensor depends on
 // it, and most beams miss. With objects, materials depend on it, so it is
 // drawn before transport. Lazy drawing changes no beam: the spectral
@@ -42,16 +46,18 @@ FN void traceLightPath(uint64_t beamIndex, INOUT(BeamTally) tally) {
                               uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
   if (SPECTRACE_OBJECTS) {
     uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
-    float lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
+    PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
+                                            constants.wavelengthsPerPath);
     bool diffuseFirstIsCameras = cameraPaths && lightLightsPoints(light);
-    transportBeam(beamIndex, origin, direction, ratio, lambda, uniformFromWord(spectral.w), diffuseFirstIsCameras, tally);
+    transportBeam(beamIndex, origin, direction, ratio, w, uniformFromWord(spectral.w), diffuseFirstIsCameras, tally);
   } else {
     uvec2 cell;
     bool hit = hitSensor(origin, direction, cell) && ratio > 0.0f;
     if (hit) {
       uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
-      float lambda = drawWavelength(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z));
-      contribute(tally, cell, storedBinOf(lambda), lambda, ratio, uniformFromWord(spectral.w));
+      PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
+                                              constants.wavelengthsPerPath);
+      contributeCounts(tally, cell, w, sharesTimes(w, ratio), uniformFromWord(spectral.w));
     }
   }
 }

@@ -35,7 +35,8 @@ layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageF
 #define SPECTRACE_CAMERA_TYPE (cameraTypeMode == kCameraTypeAtRunTime ? constants.cameraType : cameraTypeMode)
 #define SPECTRACE_AIM (aimMode != 0u)
 #define SPECTRACE_EXACT_COLOUR (exactColourMode == 2u ? constants.exactColour != 0u : exactColourMode == 1u)
-#define SPECTRACE_WEIGHTED ((aimMode != 0u || objectsMode != 0u || cameraPathsMode != 0u) && constants.weighted != 0u)
+// A weighted film is the one whose beams are counted on the device.
+#define SPECTRACE_WEIGHTED (countBeamsOnDevice != 0u && constants.weighted != 0u)
 #ifdef SPECTRACE_WITH_CAMERA_PATHS
 #define SPECTRACE_CAMERA_PATHS \
   (cameraPathsMode == 2u ? (constants.estimators & kEstimatorCameraPaths) != 0u : cameraPathsMode == 1u)

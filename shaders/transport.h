@@ -4,10 +4,11 @@
 // kRngBlockBounce), until the camera counts or absorbs it, it leaves the
 // scene, a surface absorbs it, or it meets more than maxBounces surfaces.
 //
-// Beams carry flux, so scattering is analog and keeps the weight: a
-// surface of reflectance rho reflects a beam with probability rho (Russian
-// roulette with the exact survival probability, unbiased), a dielectric
-// reflects with the Fresnel probability and refracts otherwise. Camera
+// Beams carry flux, so scattering is analog: a surface reflects a beam by
+// Russian roulette on the reflectances at its wavelengths (with one
+// wavelength, with probability rho and the weight kept), a dielectric
+// reflects with the Fresnel probability at the hero wavelength and
+// refracts otherwise. Camera
 // connections carry fractional weights (as aimed area lights do, which
 // scenes whose objects are all absorbers keep).
 #ifndef SPECTRACE_TRANSPORT_H
@@ -16,13 +17,12 @@
 #include "camera_connection.h"
 #include "material.h"
 
-// The beam from its light (origin, direction, weight ratio), with its
-// wavelength, through the scene's objects to the camera. With
+// The beam from its light (origin, direction, weight ratio), with the
+// wavelengths it carries, through the scene's objects to the camera. With
 // diffuseFirstIsCameras, a beam whose first surface is diffuse ends there:
 // camera paths count those paths (camera_path.h).
-FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float ratio, float lambda, float spareUniform,
-                      bool diffuseFirstIsCameras, INOUT(BeamTally) tally) {
-  uint bin = storedBinOf(lambda);
+FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float ratio, PathWavelengths w,
+                      float spareUniform, bool diffuseFirstIsCameras, INOUT(BeamTally) tally) {
   bool connect = constants.connect != 0u;
   bool afterDiffuse = false;
   for (uint bounce = 0u; bounce <= constants.maxBounces; ++bounce) {
@@ -35,7 +35,7 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
       // A beam straight from a diffuse vertex is the connection's (counted
       // there), so analog counts take the others only.
       if (counted && ratio > 0.0f && !(connect && afterDiffuse))
-        contribute(tally, cell, bin, lambda, ratio, spareUniform);
+        contributeCounts(tally, cell, w, sharesTimes(w, ratio), spareUniform);
       return;
     }
     if (!metObject || bounce == constants.maxBounces) return;
@@ -50,8 +50,7 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     at.fromOutside = dot3(direction, n) < 0.0f;
     at.facing = at.fromOutside ? n : -n;  // towards the side the beam came from
     uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockBounce + 2u * bounce);
-    if (!scatterAtSurface(material, at, words, beamIndex, bounce, ratio, lambda, bin, tally, origin, direction,
-                          afterDiffuse))
+    if (!scatterAtSurface(material, at, words, beamIndex, bounce, ratio, w, tally, origin, direction, afterDiffuse))
       return;
   }
 }

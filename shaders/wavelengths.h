@@ -98,4 +98,40 @@ FN bool surviveReflectance(WavelengthFactors rho, float choice, INOUT(PathWavele
   return true;
 }
 
+// One event's counts at pixel `cell` (a beam reaching the camera, a camera
+// connection, a light sample or an emitter seen): count[j] for each
+// carried wavelength j into its bin, and into a weighted film's squared
+// weights the square of their sum, once (the event is one sample).
+// (The loop runs to k, known at run time only, so the shader compiler keeps
+// one copy of the count instead of unrolling four.)
+FN void contributeCounts(INOUT(BeamTally) tally, uvec2 cell, PathWavelengths w, WavelengthFactors count,
+                         float spareUniform) {
+  uint chunk;
+  uint base;
+  bool counted = SPECTRACE_RECORDING || storedCounters(cell, chunk, base);
+  if (!counted) return;
+  PRECISE float sum = 0.0f;
+  for (uint j = 0u; j < constants.wavelengthsPerPath; ++j) {
+    if (!(w.share[j] > 0.0f)) continue;
+    if (SPECTRACE_RECORDING) tally.ratio = count.value[j];
+    else countInBin(chunk, base, w.bin[j], w.lambda[j], count.value[j], spareUniform);
+    sum += count.value[j];
+    tally.cell = cell;
+    tally.bin = w.bin[j];
+    tally.contributions += 1u;
+  }
+  if (!SPECTRACE_RECORDING) countSquaredWeight(chunk, base, sum * sum, spareUniform);
+}
+
+// `ratio` times each carried wavelength's share: what an event counts when
+// nothing on its way depends on the wavelength.
+FN WavelengthFactors sharesTimes(PathWavelengths w, float ratio) {
+  WavelengthFactors count;
+  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
+    PRECISE float c = ratio * w.share[j];
+    count.value[j] = c;
+  }
+  return count;
+}
+
 #endif  // SPECTRACE_WAVELENGTHS_H

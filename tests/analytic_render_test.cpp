@@ -13,7 +13,9 @@
 
 #include "camera/camera_frame.h"
 #include "backend/vulkan_tracer.h"
+#include "film/spectral_histogram.h"
 #include "render/renderer.h"
+#include "spectrum/spd.h"
 #include "support/statistics.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -101,6 +103,87 @@ TEST(AnalyticRender, CpuReferenceToo) {
   const double p = omega / (4.0 * M_PI);
   const double sigma = kPower * std::sqrt(p * (1.0 - p) / double(options.beams));
   EXPECT_NEAR(measured, kPower * p, 5.0 * sigma);
+}
+
+// Beams of four wavelengths (hero wavelength sampling, shaders/wavelengths.h)
+// from D65 onto a bare sensor, on both devices. Each beam that lands counts
+// a quarter of a beam in each of its four wavelengths' bins, so:
+//  - every pixel holds exactly its landed beams over all bins, and the
+//    image is the analog one's (binomial(N, Omega / 4 pi) a pixel);
+//  - bin b over the sensor holds H p_b in expectation (H beams landed, p_b
+//    D65's share of the bin), each of the four a draw from the table, with
+//    variance at most H p_b (1 - p_b) / 4 (their steps of the CDF are
+//    stratified, not independent);
+//  - the film's error estimate squares each beam's whole weight, not its
+//    four quarters, so it is the binomial standard error, not half of it;
+//  - the CPU reference and lavapipe count the same film.
+TEST(AnalyticRender, FourWavelengthsABeamKeepTheImageAndSpreadTheSpectrum) {
+  constexpr double kPower = 1.0, kDistance = 0.01;
+  constexpr int kBins = 16;
+  Scene scene = testing::bareSensorScene(0.036, 0.024, 12, 8, kBins);
+  scene.render.wavelengthsPerBeam = 4;
+  const Spd d65 = *cieIlluminant("D65");
+  scene.lights = {testing::pointLight({0.0, 0.0, kDistance}, kPower, d65)};
+  RenderOptions options;
+  options.beams = testing::scaledBeams(2'000'000, 400'000);
+  options.seed = 77;
+  options.device = DeviceChoice::Cpu;
+  const RenderResult cpu = render(scene, options);
+  options.device = DeviceChoice::Gpu;
+  const RenderResult gpu = render(scene, options);
+  ASSERT_TRUE(cpu.plan.film.weighted()) << "quarters of a beam need the weighted film";
+  ASSERT_EQ(cpu.histogram.channel(device::kFilmChannelBins), gpu.histogram.channel(device::kFilmChannelBins));
+  ASSERT_EQ(cpu.histogram.channel(device::kFilmChannelSquaredWeight),
+            gpu.histogram.channel(device::kFilmChannelSquaredWeight));
+
+  const SpectralHistogram& h = cpu.histogram;
+  const double unit = double(h.unitsPerBeam);  // 2^63 a beam: quarters are exact
+  const uint32_t pixels = h.pixelsX * h.pixelsY;
+  std::vector<double> binBeams(h.bins, 0.0);
+  double landed = 0.0;
+  for (uint32_t p = 0; p < pixels; ++p) {
+    double pixelBeams = 0.0;
+    for (uint32_t b = 0; b < h.bins; ++b) {
+      const double beams = realOf(h.count(p, b)) / unit;
+      binBeams[b] += beams;
+      pixelBeams += beams;
+    }
+    EXPECT_EQ(pixelBeams, std::round(pixelBeams)) << "pixel " << p << ": whole beams over its bins";
+    landed += pixelBeams;
+  }
+  const double n = double(options.beams);
+  const double omega = rectangleSolidAngle(-0.018, 0.018, -0.012, 0.012, 0.0, 0.0, kDistance);
+  const double p = omega / (4.0 * M_PI);
+  // 5 sigma of the binomial count of landed beams.
+  EXPECT_NEAR(landed, n * p, 5.0 * std::sqrt(n * p * (1.0 - p)));
+
+  const double inRange = d65.clipped(360.0, 830.0).integral();
+  const double width = (830.0 - 360.0) / kBins;
+  for (int b = 0; b < kBins; ++b) {
+    const double share = d65.clipped(360.0 + b * width, 360.0 + (b + 1) * width).integral() / inRange;
+    const double bound = std::sqrt(landed * share * (1.0 - share) / 4.0);
+    // 5 sigma of four independent quarters: stratified, they vary less.
+    EXPECT_NEAR(binBeams[size_t(b)], landed * share, 5.0 * bound + 1e-9) << "bin " << b;
+  }
+
+  // The same beams with one wavelength each land in the same pixels (a
+  // bare sensor: no position depends on the wavelength), so the plain
+  // film's image and binomial error are what these must be. Counting the
+  // quarters as four samples would halve the error.
+  scene.render.wavelengthsPerBeam = 1;
+  options.device = DeviceChoice::Cpu;
+  const RenderResult one = render(scene, options);
+  ASSERT_FALSE(one.plan.film.weighted());
+  double worstImage = 0.0, worstError = 0.0;
+  for (size_t i = 0; i < one.image.irradiance.size(); ++i) {
+    worstImage = std::max(worstImage, std::abs(cpu.image.irradiance[i] / one.image.irradiance[i] - 1.0));
+    worstError = std::max(worstError, std::abs(cpu.image.irradianceError[i] / one.image.irradianceError[i] - 1.0));
+  }
+  std::printf("landed %.0f of %.0f (expected %.1f); against one wavelength a beam: image within %.1e, error within "
+              "%.1e\n",
+              landed, n, n * p, worstImage, worstError);
+  EXPECT_LE(worstImage, 1e-6) << "the same beams in the same pixels, up to float rounding";
+  EXPECT_LE(worstError, 1e-4) << "the error estimate of whole beams";
 }
 
 }  // namespace

@@ -49,10 +49,11 @@ function(expect_refused name regex)
 endfunction()
 
 # Two shards of SCENE, 1000 beams each, on the CPU reference: DIR/part0 and
-# DIR/part1, each an .exr and a .state.
+# DIR/part1, each an .exr and a .state; `shard_args`, when the caller sets
+# it, goes to both renders.
 function(render_two_shards)
   foreach(part 0 1)
-    run("${SPECTRACE}" render "${SCENE}" --device cpu -q --no-png --beams 2000 --shard ${part}/2
+    run("${SPECTRACE}" render "${SCENE}" --device cpu -q --no-png --beams 2000 --shard ${part}/2 ${shard_args}
         -o "${DIR}/part${part}.exr" --state "${DIR}/part${part}.state")
   endforeach()
 endfunction()

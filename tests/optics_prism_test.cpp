@@ -207,7 +207,7 @@ Spot measureSpot(const SpectralHistogram& h, uint32_t bin, double expectX, doubl
   std::vector<std::array<double, 3>> hits;
   for (int row = 0; row < kPixelsY; ++row)
     for (int col = 0; col < kPixelsX; ++col) {
-      const double c = double(h.at(uint32_t(row * kPixelsX + col), bin));
+      const double c = realOf(h.count(uint32_t(row * kPixelsX + col), bin)) / double(h.unitsPerBeam);  // beams
       if (c == 0.0) continue;
       const double x = -0.5 * kSensorW + (col + 0.5) * pw, y = 0.5 * kSensorH - (row + 0.5) * ph;
       if (std::hypot(x - expectX, y - expectY) > window) continue;

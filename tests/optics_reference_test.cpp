@@ -405,23 +405,29 @@ CompileOptions withEstimators(bool lightPaths, bool cameraPaths) {
 
 // Light paths: the camera connections are worth ~1e-10 of a beam each,
 // which the film must keep exactly (device_shared.h,
-// kWeightUnitsFractional). A beam makes one count at most (one diffuse
-// vertex, and the spot cannot reach the aperture), so the film's own
-// estimate is the standard error.
+// kWeightUnitsFractional). A beam makes one count event at most (one
+// diffuse vertex, and the spot cannot reach the aperture), and the film
+// squares each event's whole weight over its wavelengths, so its own
+// estimate is the standard error; with one and with four wavelengths a
+// beam.
 TEST_P(OpticsReference, LitGreySquareMatchesItsClosedFormWithLightPaths) {
-  const LitGreySquare s = litGreySquare();
+  LitGreySquare s = litGreySquare();
   ASSERT_GT(s.pixels.size(), 300u) << "most of the image is the lit square";
   const uint64_t kBeams = testing::scaledBeams(GetParam() == DeviceChoice::Gpu ? 2'000'000 : 4'000'000, 400'000);
-  const RenderResult result = renderHere(s.scene, kBeams, 21, withEstimators(true, false));
-  ASSERT_TRUE(result.plan.film.weighted());
-  std::vector<float> measured;
-  std::vector<double> sigma;
-  for (size_t p : s.pixels) {
-    measured.push_back(result.image.irradiance[p]);
-    sigma.push_back(double(result.image.irradianceError[p]));
-    ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+  for (const uint32_t k : {1u, 4u}) {
+    s.scene.render.wavelengthsPerBeam = k;
+    const RenderResult result = renderHere(s.scene, kBeams, 21, withEstimators(true, false));
+    ASSERT_TRUE(result.plan.film.weighted());
+    std::vector<float> measured;
+    std::vector<double> sigma;
+    for (size_t p : s.pixels) {
+      measured.push_back(result.image.irradiance[p]);
+      sigma.push_back(double(result.image.irradianceError[p]));
+      ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+    }
+    expectPixels(measured, s.expected, sigma,
+                 std::string(name()) + " lit grey square, light paths, k = " + std::to_string(k));
   }
-  expectPixels(measured, s.expected, sigma, std::string(name()) + " lit grey square, light paths");
 }
 
 // Camera paths (alone, and with light paths, which then count nothing
@@ -439,8 +445,13 @@ TEST_P(OpticsReference, LitGreySquareMatchesItsClosedFormWithCameraPaths) {
   const uint64_t kPaths = testing::scaledBeams(1'000'000, 100'000);
   const double n = double(kPaths) / double(s.scene.camera.pixelsX * s.scene.camera.pixelsY);
   const double tolerance = 5.0 * (0.03 / std::sqrt(n) + 1.0 / n);
-  for (const bool lightPaths : {false, true}) {
-    const RenderResult result = renderHere(s.scene, kPaths, 22, withEstimators(lightPaths, true));
+  // Camera paths alone, then both estimators, with four wavelengths a path
+  // (the scene's default) and then one.
+  Scene one = s.scene;
+  one.render.wavelengthsPerBeam = 1;
+  for (int run = 0; run < 3; ++run) {
+    const bool lightPaths = run > 0;
+    const RenderResult result = renderHere(run == 2 ? one : s.scene, kPaths, 22, withEstimators(lightPaths, true));
     ASSERT_TRUE(result.plan.film.weighted());
     double worst = 0.0;
     for (size_t i = 0; i < s.pixels.size(); ++i) {
@@ -450,8 +461,8 @@ TEST_P(OpticsReference, LitGreySquareMatchesItsClosedFormWithCameraPaths) {
       EXPECT_LE(relative, tolerance) << name() << (lightPaths ? " both" : " camera") << ": pixel " << s.pixels[i]
                                      << " measured " << measured << " W/m^2, expected " << s.expected[i];
     }
-    std::printf("  %s, %s: %zu pixels, worst relative error %.2e (tolerance %.2e)\n", name(),
-                lightPaths ? "both" : "camera paths", s.pixels.size(), worst, tolerance);
+    std::printf("  %s, %s, k = %d: %zu pixels, worst relative error %.2e (tolerance %.2e)\n", name(),
+                lightPaths ? "both" : "camera paths", run == 2 ? 1 : 4, s.pixels.size(), worst, tolerance);
   }
 }
 
@@ -495,16 +506,20 @@ TEST_P(OpticsReference, EmitterSquareMatchesItsClosedForm) {
     }
   ASSERT_GT(pixels.size(), 300u) << "the square fills the middle of the image";
 
-  const RenderResult beams =
-      renderHere(scene, testing::scaledBeams(4'000'000, 400'000), 23, withEstimators(true, false));
-  std::vector<float> measured;
-  std::vector<double> sigma;
-  for (size_t p : pixels) {
-    measured.push_back(beams.image.irradiance[p]);
-    sigma.push_back(double(beams.image.irradianceError[p]));
-    ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+  for (const uint32_t k : {1u, 4u}) {  // wavelengths a beam
+    scene.render.wavelengthsPerBeam = k;
+    const RenderResult beams =
+        renderHere(scene, testing::scaledBeams(4'000'000, 400'000), 23, withEstimators(true, false));
+    std::vector<float> measured;
+    std::vector<double> sigma;
+    for (size_t p : pixels) {
+      measured.push_back(beams.image.irradiance[p]);
+      sigma.push_back(double(beams.image.irradianceError[p]));
+      ASSERT_GT(sigma.back(), 0.0) << "pixel " << p << " counted nothing";
+    }
+    expectPixels(measured, expected, sigma, std::string(name()) + " emitter square, light paths, k = " + std::to_string(k));
   }
-  expectPixels(measured, expected, sigma, std::string(name()) + " emitter square, light paths");
+  scene.render.wavelengthsPerBeam = 4;
 
   const uint64_t kPaths = testing::scaledBeams(1'000'000, 100'000);
   const double n = double(kPaths) / double(scene.camera.pixelsX * scene.camera.pixelsY);
@@ -1019,23 +1034,31 @@ RecordComparison compareRecords(const CompiledScene& plan, uint32_t count, const
   return c;
 }
 
-void expectIdenticalRecords(bool connect, uint32_t count) {
-  const Scene scene = everyObjectScene();
+void expectIdenticalRecords(bool connect, uint32_t count, uint32_t wavelengthsPerBeam = 1) {
+  Scene scene = everyObjectScene();
+  scene.render.wavelengthsPerBeam = wavelengthsPerBeam;
   CompileOptions options;
   options.connect = connect;
   options.cameraPaths = false;  // light paths alone
   const CompiledScene plan = compileScene(scene, 2025, options);
   ASSERT_EQ(plan.device.constants.connect, connect ? 1u : 0u);
-  const auto [differ, counted, several, most] = compareRecords(plan, count, connect ? "connected" : "analog");
+  const std::string label =
+      std::string(connect ? "connected" : "analog") + ", k = " + std::to_string(wavelengthsPerBeam);
+  const auto [differ, counted, several, most] = compareRecords(plan, count, label.c_str());
   EXPECT_EQ(differ, 0u);
   // A meaningful share is counted, and connections make beams count more
   // than once.
   EXPECT_GT(counted, count / (connect ? 20 : 1000));
   if (connect) EXPECT_GT(several, count / 1000);
-  else EXPECT_EQ(most, counted > 0 ? 1u : 0u);  // analog: one count at most
+  else EXPECT_EQ(most, counted > 0 ? wavelengthsPerBeam : 0u);  // analog: one count a wavelength at most
 }
 
 TEST(OpticsReferenceBeams, EveryShapeAndMaterialConnectedBeamByBeam) { expectIdenticalRecords(true, 200'000); }
+// Four wavelengths a beam: per-wavelength roulette, connections and the
+// hero alone through dispersive glass.
+TEST(OpticsReferenceBeams, EveryShapeAndMaterialConnectedFourWavelengthsBeamByBeam) {
+  expectIdenticalRecords(true, uint32_t(testing::scaledBeams(200'000, 40'000)), 4);
+}
 
 // Camera paths (with the light paths they leave over) through the same
 // objects, lit also by a spot, a disk and a rect light, which camera paths
@@ -1059,6 +1082,7 @@ TEST(OpticsReferenceBeams, EveryShapeAndMaterialCameraPathsPathByPath) {
   scene.lights.push_back(spot);
   scene.lights.push_back(disk);
   scene.lights.push_back(rect);
+  scene.render.wavelengthsPerBeam = 4;
   const CompiledScene plan = compileScene(scene, 2026);
   ASSERT_EQ(plan.device.constants.estimators, device::kEstimatorLightPaths | device::kEstimatorCameraPaths);
   const uint32_t count = uint32_t(testing::scaledBeams(200'000, 40'000));

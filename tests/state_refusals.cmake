@@ -8,6 +8,9 @@ include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
 set(quick --device cpu -q --no-png)
+# A plain film (one wavelength a beam): counters of one word, whose sums
+# pass 2^64 - 1.
+set(shard_args --wavelengths-per-beam 1)
 render_two_shards()
 set(part0 "${DIR}/part0.state")
 set(part1 "${DIR}/part1.state")

@@ -113,8 +113,8 @@ int main(int argc, char** argv) {
       ->default_str("both");
   renderCmd
       ->add_option("--wavelengths-per-beam", render.wavelengthsPerBeam,
-                   "Wavelengths each camera path carries, stratified over its light's spectrum: 1, 2 or 4 "
-                   "(default: the scene's render.wavelengths_per_beam, else 4; beams carry one)")
+                   "Wavelengths each beam and camera path carries, stratified over its light's spectrum: 1, 2 or 4 "
+                   "(default: the scene's render.wavelengths_per_beam, else 4)")
       ->check(CLI::IsMember({1u, 2u, 4u}))
       ->type_name("K");
   renderCmd->add_flag("--per-beam-colour", render.perBeamColour,

@@ -297,8 +297,10 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   compiled.device.constants.estimators = estimatorsFor(options, cameraPathsUseless);
   compiled.device.constants.wavelengthsPerPath = scene.render.wavelengthsPerBeam;
   const bool cameraPaths = (compiled.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
-  // Camera connections and camera paths carry fractional weights.
-  if (compiled.device.constants.connect != 0 || cameraPaths) compiled.film.weightUnits = device::kWeightUnitsFractional;
+  // Camera connections, camera paths and beams of several wavelengths (each
+  // counting its share) carry fractional weights.
+  if (compiled.device.constants.connect != 0 || cameraPaths || compiled.device.constants.wavelengthsPerPath > 1)
+    compiled.film.weightUnits = device::kWeightUnitsFractional;
   if (shortcutApplies(Shortcut::TrimSpectrum, options.trimSpectrum, scene)) trimSpectrum(compiled.device, compiled.film);
   if (shortcutApplies(Shortcut::TrimPixels, options.trimPixels, scene))
     compiled.film.window = reachablePixelWindow(scene.camera, reaches);

@@ -1,4 +1,5 @@
 #include "compile/estimators.h"
+#include <algorithm>
 
 #include "materials/material_type.h"
 
@@ -54,10 +55,10 @@ const char* estimatorsDescription(uint32_t estimators) {
 }
 
 uint64_t countsPerPathBound(const device::TraceConstants& c) {
-  uint64_t counts = 0;
-  if (c.estimators & device::kEstimatorLightPaths) counts += 1 + (c.connect ? c.maxBounces : 0);
-  if (c.estimators & device::kEstimatorCameraPaths) counts += 1 + uint64_t(c.maxBounces);
-  return counts;
+  uint64_t events = 0;
+  if (c.estimators & device::kEstimatorLightPaths) events += 1 + (c.connect ? c.maxBounces : 0);
+  if (c.estimators & device::kEstimatorCameraPaths) events += 1 + uint64_t(c.maxBounces);
+  return events * std::max<uint64_t>(c.wavelengthsPerPath, 1);  // each event counts every wavelength
 }
 
 }  // namespace spectrace

@@ -50,8 +50,8 @@ struct FilmFingerprint {
   // (compile/compile_scene.h, namedCompileOptions), so a merge or resume
   // compiles it the same way and no option can be left out.
   std::map<std::string, bool> compileOptions;
-  // The wavelengths each camera path carried (1 without camera paths, as
-  // in states written before them).
+  // The wavelengths each beam and camera path carried (1 in states written
+  // before them).
   uint32_t wavelengthsPerBeam = 1;
 };
 

@@ -31,7 +31,7 @@ struct RenderSettings {
   // more is dropped, a bias the reference tests bound.
   uint32_t maxBounces = 64;
   // The wavelengths a camera path carries (shaders/wavelengths.h): 1, 2 or
-  // 4, stratified over each light's spectrum. (Beams carry one.)
+  // 4, stratified over each light's spectrum; beams carry as many.
   uint32_t wavelengthsPerBeam = 4;
 };
 

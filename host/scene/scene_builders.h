@@ -6,9 +6,13 @@
 
 namespace spectrace {
 
-// A bare sensor at the origin looking along +z, spectrum 360-830 nm.
+// A bare sensor at the origin looking along +z, spectrum 360-830 nm. Beams
+// carry one wavelength (the loader's default is 4), so a film of unit
+// weights counts hits, which these scenes' closed forms count; a caller
+// that tests several wavelengths sets render.wavelengthsPerBeam.
 inline Scene bareSensorScene(double widthM, double heightM, int pixelsX, int pixelsY, int bins = 32) {
   Scene scene;
+  scene.render.wavelengthsPerBeam = 1;
   scene.spectrum = {360.0, 830.0, bins};
   scene.camera.sensorWidthM = widthM;
   scene.camera.sensorHeightM = heightM;

@@ -96,8 +96,7 @@ FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) 
   FilmFingerprint f = fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256,
                                     job.scene.observer, job.seedValue(), job.tracer.specialisedFeatures,
                                     namedCompileOptions(job.plan));
-  const bool cameraPaths = (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
-  f.wavelengthsPerBeam = cameraPaths ? plan.device.constants.wavelengthsPerPath : 1;
+  f.wavelengthsPerBeam = plan.device.constants.wavelengthsPerPath;
   f.referencedFilesSha256 = job.scene.referencedFilesSha256;
   return f;
 }

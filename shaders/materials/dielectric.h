@@ -34,10 +34,17 @@ FN float fresnelDielectric(float cosIncident, float cosTransmitted, float eta) {
   return f;
 }
 
-FN bool scatterDielectric(Material material, SurfaceHit hit, uvec4 words, float lambda, INOUT(vec3) origin,
-                          INOUT(vec3) direction, INOUT(bool) afterDiffuse) {
+// A dispersive one keeps a path's hero wavelength only (wavelengths.h:
+// keepHeroOnly): the others would leave in other directions.
+FN void keepWavelengthsThrough(Material material, INOUT(PathWavelengths) w) {
+  if (materialDisperses(material) && constants.wavelengthsPerPath > 1u) keepHeroOnly(w, constants.wavelengthsPerPath);
+}
+
+FN bool scatterDielectric(Material material, SurfaceHit hit, uvec4 words, INOUT(PathWavelengths) w,
+                          INOUT(vec3) origin, INOUT(vec3) direction, INOUT(bool) afterDiffuse) {
+  keepWavelengthsThrough(material, w);
   float choice = uniformFromWord(words.x);
-  float index = refractiveIndexAt(material, lambda);
+  float index = refractiveIndexAt(material, w.lambda[0]);
   PRECISE float eta = hit.fromOutside ? 1.0f / index : index;
   PRECISE float cosIncident = -dot3(direction, hit.facing);
   PRECISE float sinSqTransmitted = eta * eta * max(1.0f - cosIncident * cosIncident, 0.0f);

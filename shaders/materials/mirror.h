@@ -1,13 +1,13 @@
 // Mirror material (kernel unit; host unit: host/materials/mirror_material.cpp):
-// specular reflection with probability rho (the reflectance at the beam's
-// wavelength).
+// specular reflection, kept by the roulette at the wavelengths' reflectances
+// (wavelengths.h: surviveReflectance; with one wavelength, reflected with
+// probability rho).
 #ifndef SPECTRACE_MATERIALS_MIRROR_H
 #define SPECTRACE_MATERIALS_MIRROR_H
 
-FN bool scatterMirror(Material material, SurfaceHit hit, uvec4 words, float lambda, INOUT(vec3) origin,
+FN bool scatterMirror(Material material, SurfaceHit hit, uvec4 words, INOUT(PathWavelengths) w, INOUT(vec3) origin,
                       INOUT(vec3) direction, INOUT(bool) afterDiffuse) {
-  float choice = uniformFromWord(words.x);
-  if (!(choice < reflectanceAt(material, lambda))) return false;
+  if (!surviveReflectance(reflectancesAt(material, w), uniformFromWord(words.x), w)) return false;
   direction = reflected(direction, hit.facing);
   origin = offsetOffSurface(hit.point, hit.facing);
   afterDiffuse = false;

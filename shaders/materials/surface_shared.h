@@ -18,6 +18,16 @@ FN float reflectanceAt(Material m, float lambda) {
   return value;
 }
 
+// The reflectance at each wavelength a path carries (0 for those it no
+// longer carries).
+FN WavelengthFactors reflectancesAt(Material m, PathWavelengths w) {
+  WavelengthFactors rho;
+  for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) rho.value[j] = 0.0f;
+  for (uint j = 0u; j < constants.wavelengthsPerPath; ++j)
+    if (w.share[j] > 0.0f) rho.value[j] = reflectanceAt(m, w.lambda[j]);
+  return rho;
+}
+
 FN vec3 reflected(vec3 direction, vec3 n) {
   PRECISE vec3 r = direction - n * (2.0f * dot3(direction, n));
   return r;
