@@ -21,7 +21,10 @@ struct CsvTable {
 
 // Parses CSV text: an optional header line (recognised by a first field that
 // is not a number), '#' comments (whole line or trailing), blank lines, CRLF
-// or LF. Every data row must have as many fields as the first row/header.
+// or LF. Fields are separated by ',', tab or ';', one for the whole file,
+// taken from the header or first data row; a field may be quoted (RFC 4180:
+// "" is a quote, a separator or '#' inside quotes is text; one line per
+// field). Every data row must have as many fields as the first row/header.
 // Throws SpdError whose message starts with "<source>:<line>: ".
 CsvTable parseCsvTable(std::string_view text, const std::string& source);
 

@@ -238,6 +238,66 @@ TEST(SpdCsv, AByteOrderMarkDoesNotTurnTheFirstRowIntoAHeader) {
   EXPECT_EQ(named.integral(), 200.0);
 }
 
+// Spreadsheets quote fields (RFC 4180): "" is a literal quote, and a
+// separator or '#' inside quotes is part of the field.
+TEST(SpdCsv, ReadsQuotedHeaderAndFields) {
+  const fs::path quoted = writeTemp("quoted.csv", "\"wavelength\",\"value\"\r\n\"500\",\"1\"\r\n600,\"3\"\r\n");
+  EXPECT_EQ(loadCsvSpd(quoted, "value").integral(), 200.0);
+  EXPECT_EQ(loadCsvSpd(quoted).integral(), 200.0);
+  const fs::path numbers = writeTemp("quoted_numbers.csv", "\"500\", \"1.5\"  # a comment\n\"600\",\"+2.5e0\"\n");
+  const Spd s = loadCsvSpd(numbers);
+  EXPECT_EQ(s.lambdaNm, (std::vector<double>{500, 600}));
+  EXPECT_EQ(s.value, (std::vector<double>{1.5, 2.5}));
+  const fs::path names = writeTemp("quoted_names.csv",
+                                   "nm,\"lamp, \"\"warm\"\"\",\"# of photons\"\n500,1,2\n600,3,4\n");
+  EXPECT_EQ(loadCsvSpd(names, "lamp, \"warm\"").integral(), 200.0);
+  EXPECT_EQ(loadCsvSpd(names, "# of photons").integral(), 300.0);
+  expectSpdError([&] { loadCsvSpd(names, "blue"); }, {"columns are: lamp, \"warm\", # of photons"});
+  const fs::path open = writeTemp("quote_open.csv", "nm,v\n500,\"1\n600,2\n");
+  expectSpdError([&] { loadCsvSpd(open); }, {open.string() + ":2:", "field 2", "quote", "never closed"});
+  const fs::path after = writeTemp("quote_after.csv", "nm,v\n500,\"1\"2\n600,2\n");
+  expectSpdError([&] { loadCsvSpd(after); }, {after.string() + ":2:", "field 2", "after its closing quote"});
+}
+
+TEST(SpdCsv, ReadsTabAndSemicolonSeparatedFiles) {
+  const fs::path tab = writeTemp("tab.tsv", "wavelength_nm\tpower\r\n# lamp\n500\t1\n550 \t 3  # spaced\n600\t3\n");
+  const Spd t = loadCsvSpd(tab, "power");
+  EXPECT_EQ(t.lambdaNm, (std::vector<double>{500, 550, 600}));
+  EXPECT_EQ(t.value, (std::vector<double>{1, 3, 3}));
+  const fs::path tabNoHdr = writeTemp("tab_nohdr.tsv", "500\t1\n600\t1\n");
+  EXPECT_EQ(loadCsvSpd(tabNoHdr).integral(), 100.0);
+  const fs::path tabRagged = writeTemp("tab_ragged.tsv", "nm\tv\n500\t1\n550\t\t3\n");
+  expectSpdError([&] { loadCsvSpd(tabRagged); }, {tabRagged.string() + ":3:", "expected 2 tab-separated fields, got 3"});
+  const fs::path semi = writeTemp("semi.csv", "\"nm\";\"red\";\"green\"\n500;1;0\n600;3;2\n");
+  EXPECT_EQ(loadCsvSpd(semi, "red").integral(), 200.0);
+  EXPECT_EQ(loadCsvSpd(semi, "green").integral(), 100.0);
+  // A decimal comma in a semicolon file is not a number; the message says why.
+  const fs::path decimalComma = writeTemp("semi_decimal_comma.csv", "nm;v\n500;1,5\n600;2\n");
+  expectSpdError([&] { loadCsvSpd(decimalComma); },
+                 {decimalComma.string() + ":2:", "'1,5' is not a number", "decimal comma"});
+}
+
+TEST(SpdCsv, AnUnclearOrChangingSeparatorIsNamedWithFileAndLine) {
+  // Both ',' and ';' split the header and the first data row alike: which
+  // one is meant is unclear.
+  const fs::path mixed = writeTemp("mixed.csv", "# lamp\nnm,value;other\n500,1;2\n");
+  expectSpdError([&] { loadCsvSpd(mixed); }, {mixed.string() + ":2:", "separator is unclear", "','", "';'"});
+  const fs::path tabComma = writeTemp("tab_comma.csv", "500\t1,5\n600\t2\n");
+  expectSpdError([&] { loadCsvSpd(tabComma); }, {tabComma.string() + ":1:", "separator", "','", "tab"});
+  // A comma file keeps a ';' in a column name, and tabs that pad its commas.
+  const fs::path semiName = writeTemp("semi_in_name.csv", "nm,power; W/nm\n500,1\n600,3\n");
+  EXPECT_EQ(loadCsvSpd(semiName, "power; W/nm").integral(), 200.0);
+  const fs::path tabPadded = writeTemp("tab_padded.csv", "nm,\tv\n500,\t1\n600,\t3\n");
+  EXPECT_EQ(loadCsvSpd(tabPadded, "v").integral(), 200.0);
+  // One separator per file: a later line with another is named.
+  const fs::path changed = writeTemp("changed.csv", "nm\tv\n500\t1\n600;2\n");
+  expectSpdError([&] { loadCsvSpd(changed); },
+                 {changed.string() + ":3:", "expected 2 tab-separated fields, got 1", "';'", "line 1"});
+  // A line with no separator at all says which ones it looked for.
+  const fs::path spaces = writeTemp("spaces.csv", "500 1\n600 2\n");
+  expectSpdError([&] { loadCsvSpd(spaces); }, {spaces.string() + ":1:", "',', tab or ';'"});
+}
+
 TEST(SpdCsv, ErrorsNameFileLineAndProblem) {
   const fs::path nonMono = writeTemp("nonmono.csv", "nm,v\n400,1\n410,1\n\n400,1\n");
   expectSpdError([&] { loadCsvSpd(nonMono); },
