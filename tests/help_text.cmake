@@ -1,7 +1,7 @@
 # Every verb's --help: flags without CLI11's "{false}", options with a type
 # name (no bare TEXT: numbers, paths and devices say which), and the
 # defaults that are fixed values shown after '='.
-#   -DSPECTRACE=path
+#   -DSPECTRACE=path -DREADME=path
 foreach(verb render merge batch bench)
   execute_process(COMMAND "${SPECTRACE}" ${verb} --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -31,4 +31,17 @@ foreach(case "render|--beams COUNT " "render|--seed INT " "render|--first-beam I
     message(FATAL_ERROR "${verb} --help does not show '${text}':\n${help_${verb}}")
   endif()
 endforeach()
-message(STATUS "every verb's help shows type names and defaults, and flags without braces")
+# The README's usage of bench names exactly the options its help shows, so
+# that neither falls behind the other.
+string(REGEX MATCHALL "\n +(-[a-z],)?--[a-z-]+" help_options "${help_bench}")
+list(TRANSFORM help_options REPLACE "^\n +(-[a-z],)?" "")
+list(REMOVE_ITEM help_options --help)
+file(READ "${README}" readme)
+string(REGEX MATCH "\nspectrace bench [^\n]*(\n +\\[[^\n]*)*" usage "${readme}")
+string(REGEX MATCHALL "--[a-z-]+" readme_options "${usage}")
+list(SORT help_options)
+list(SORT readme_options)
+if(NOT help_options OR NOT help_options STREQUAL readme_options)
+  message(FATAL_ERROR "README's `spectrace bench` usage names ${readme_options}\nbut bench --help shows ${help_options}")
+endif()
+message(STATUS "every verb's help shows type names and defaults, and flags without braces; README's bench usage matches its help")

@@ -200,16 +200,18 @@ void writeOpticsSection(std::ostream& md, const std::vector<OpticsRow>& rows) {
 void writeBenchReport(const std::filesystem::path& dir, const BenchReport& report) {
   const auto data = dir / "bench";
   std::filesystem::create_directories(data);
-  writeSweepCsv(data / "error_sweep.csv", report.sweep);
-  writeColourCsv(data / "colour_bins.csv", report.colour);
+  // Only the sections that ran have rows; a skipped one writes no file (an
+  // empty CSV would read as a measurement of nothing).
+  if (!report.sweep.empty()) writeSweepCsv(data / "error_sweep.csv", report.sweep);
+  if (!report.colour.empty()) writeColourCsv(data / "colour_bins.csv", report.colour);
   if (!report.profile.empty()) writeProfileCsv(data / "profile.csv", report.profile);
   if (!report.ceiling.empty()) writeCeilingCsv(data / "ceiling.csv", report.ceiling);
-  {
+  if (!report.aim.empty()) {
     std::vector<SweepRow> aimRows;
     for (const auto& a : report.aim) aimRows.insert(aimRows.end(), {a.aimed, a.analog});
     writeSweepCsv(data / "aim.csv", aimRows);
   }
-  {
+  if (!report.throughput.empty()) {
     std::ofstream csv(data / "throughput.csv");
     csv << "device,device_name,exact_colour,beams,hits,wall_s,trace_device_s,beams_per_s\n";
     for (const auto& t : report.throughput)

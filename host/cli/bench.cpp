@@ -534,21 +534,21 @@ std::vector<std::string> referenceScenes(const std::filesystem::path& dir) {
 
 }  // namespace
 
+std::string benchSectionNames() {
+  std::string names;
+  for (const BenchSection& s : kBenchSections) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  return names;
+}
+
 void selectBenchSections(BenchCommand& command, const std::string& list) {
-  const std::vector<std::pair<std::string, bool*>> sections = {
-      {"throughput", &command.throughput}, {"specialisation", &command.specialisation}, {"aim", &command.aim},
-      {"batch", &command.batch},           {"sweep", &command.sweep},                   {"colour", &command.colour},
-      {"profile", &command.profile},       {"ceiling", &command.ceiling},           {"optics", &command.optics},
-      {"fom", &command.fom}};
-  for (const auto& [name, flag] : sections) *flag = false;
+  for (const BenchSection& s : kBenchSections) command.*s.run = false;
   std::stringstream items(list);
   for (std::string item; std::getline(items, item, ',');) {
-    const auto it = std::find_if(sections.begin(), sections.end(), [&](const auto& s) { return s.first == item; });
-    if (it == sections.end())
-      throw UsageError(fmt::format("--only {}: unknown section '{}' (throughput, specialisation, aim, batch, sweep, colour, "
-                                   "profile, ceiling, optics, fom)",
-                                   list, item));
-    *it->second = true;
+    const auto it = std::find_if(std::begin(kBenchSections), std::end(kBenchSections),
+                                 [&](const BenchSection& s) { return s.name == item; });
+    if (it == std::end(kBenchSections))
+      throw UsageError(fmt::format("--only {}: unknown section '{}' ({})", list, item, benchSectionNames()));
+    command.*it->run = true;
   }
 }
 

@@ -95,12 +95,23 @@ struct BenchCommand {
   bool fom = true;            // the scenes matched with pbrt-v4 (scenes/bench/fom_*): error per second
   uint64_t profileBeams = uint64_t(1) << 23;  // per stage and device, and per ceiling run
 };
-// --only: runs only the comma-separated sections (throughput, specialisation,
-// aim, batch, sweep, colour, profile, ceiling). UsageError for an unknown name.
+// The sections --only names, each with the flag that runs it: the one list
+// that the help text, the refusal of an unknown name and --only all read.
+struct BenchSection {
+  const char* name;
+  bool BenchCommand::*run;
+};
+inline constexpr BenchSection kBenchSections[] = {
+    {"throughput", &BenchCommand::throughput}, {"specialisation", &BenchCommand::specialisation},
+    {"aim", &BenchCommand::aim},               {"batch", &BenchCommand::batch},
+    {"sweep", &BenchCommand::sweep},           {"colour", &BenchCommand::colour},
+    {"profile", &BenchCommand::profile},       {"ceiling", &BenchCommand::ceiling},
+    {"optics", &BenchCommand::optics},         {"fom", &BenchCommand::fom}};
+// "throughput, specialisation, ...": kBenchSections' names, for messages.
+std::string benchSectionNames();
+// --only: keeps only the comma-separated sections of kBenchSections;
+// UsageError for an unknown name.
 void selectBenchSections(BenchCommand& command, const std::string& list);
 int runBench(const BenchCommand& command, const std::atomic<bool>& cancel);
-// --only: keeps only the named sections (comma-separated: throughput,
-// specialisation, aim, batch, sweep, colour); throws UsageError for others.
-void selectBenchSections(BenchCommand& command, const std::string& list);
 
 }  // namespace spectrace::cli

@@ -210,8 +210,7 @@ int main(int argc, char** argv) {
   benchCmd->add_option_function<std::string>(
       "--only",
       [&](const std::string& list) { selectBenchSections(bench, list); },
-      "Run only these sections (comma-separated): throughput, specialisation, aim, batch, sweep, colour, profile, "
-      "ceiling, optics, fom")
+      "Run only these sections (comma-separated): " + benchSectionNames())
       ->type_name("LIST");
   benchCmd->add_option_function<std::string>(
       "--profile-beams", [&](const std::string& v) { bench.profileBeams = parseU64("--profile-beams", v, 1); },
