@@ -133,6 +133,8 @@ std::string BatchRun::render(JobEntry& entry, size_t i) {
     writing_ = Written{i, std::move(result), job.beamCount()};
     // --fail-fast must know this job's outcome before the next one starts.
     if (command_.failFast) collect();
+  } catch (const OutputPathError& e) {
+    return fmt::format("{}: {}: {}", entry.where, e.role == job.stateRole ? "/state" : "/output", e.what());
   } catch (const OutputError& e) {
     return fmt::format("{}: /output: {}", entry.where, e.what());
   } catch (const std::exception& e) {

@@ -77,7 +77,8 @@ Scene parseSceneJson(const nlohmann::json& root, const std::filesystem::path& fi
 // refused); errors are SceneError "<file>: <what>", and for a missing file
 // "<file>: scene file not found (looked for <absolute path>)".
 std::string readSceneText(const std::filesystem::path& file);
-nlohmann::json readSceneJson(const std::filesystem::path& file);
+// With `sha256`, also the file bytes' digest (as loadScene's sourceSha256).
+nlohmann::json readSceneJson(const std::filesystem::path& file, std::string* sha256 = nullptr);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
 std::string sceneSha256Hex(std::string_view bytes);
 // The digest of the files `scene` names, in scene order (each light's CSV

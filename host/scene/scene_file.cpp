@@ -285,9 +285,11 @@ Scene parseSceneJson(const nlohmann::json& root, const fs::path& file) {
   return parseRoot(root, file, sceneSha256Hex(root.dump()));
 }
 
-nlohmann::json readSceneJson(const fs::path& file) {
+nlohmann::json readSceneJson(const fs::path& file, std::string* sha256) {
   const jf::Source c = sourceFor(file);
-  return jf::parseJson(c, readSceneText(file));
+  const std::string text = readSceneText(file);
+  if (sha256) *sha256 = sceneSha256Hex(text);
+  return jf::parseJson(c, text);
 }
 
 Scene loadScene(const fs::path& file) { return parseScene(readSceneText(file), file); }

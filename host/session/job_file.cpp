@@ -64,8 +64,10 @@ void applyOverride(const jf::Source& c, const std::string& field, Json& scene, c
   scene[pointer] = value;
 }
 
-// Output pattern: {index} and {<pointer>} replaced; "{{" and "}}" are braces.
-std::string expandPattern(const jf::Source& c, const std::string& pattern, uint64_t index, const Json& scene) {
+// Output or state pattern (`field`: "/output", "/state"): {index} and
+// {<pointer>} replaced; "{{" and "}}" are braces.
+std::string expandPattern(const jf::Source& c, const std::string& field, const std::string& pattern, uint64_t index,
+                          const Json& scene) {
   std::string out;
   for (size_t i = 0; i < pattern.size(); ++i) {
     const char ch = pattern[i];
@@ -79,14 +81,14 @@ std::string expandPattern(const jf::Source& c, const std::string& pattern, uint6
       continue;
     }
     const size_t end = pattern.find('}', i);
-    if (end == std::string::npos) c.fail("/output", fmt::format("unclosed '{{' in {}", jf::jsonQuoted(pattern)));
+    if (end == std::string::npos) c.fail(field, fmt::format("unclosed '{{' in {}", jf::jsonQuoted(pattern)));
     const std::string name = pattern.substr(i + 1, end - i - 1);
     if (name == "index") {
       out += std::to_string(index);
     } else {
-      const auto pointer = pointerOf(c, "/output", name);
+      const auto pointer = pointerOf(c, field, name);
       if (name.empty() || !scene.contains(pointer))
-        c.fail("/output", fmt::format("{{{}}} names no field of the scene (use {{index}} or {{/json/pointer}})", name));
+        c.fail(field, fmt::format("{{{}}} names no field of the scene (use {{index}} or {{/json/pointer}})", name));
       out += nameOf(scene[pointer]);
     }
     i = end;
@@ -102,7 +104,7 @@ struct LineSpec {
   Json job;
   fs::path scenePath;
   std::optional<uint64_t> beams, seed;
-  std::optional<std::string> outputPattern;
+  std::optional<std::string> outputPattern, statePattern;
   Sweep sweep;
   std::optional<uint64_t> count;  // the sweep's combinations; none when they pass 2^64 - 1
 };
@@ -151,7 +153,7 @@ LineSpec parseLine(const fs::path& file, size_t number, const std::string& text)
   spec.job = jf::parseJson(c, text);
   const Json& job = spec.job;
   if (!job.is_object()) c.fail("", fmt::format("a job must be a JSON object (got {})", jf::describe(job)));
-  jf::checkObject(c, job, "", {"scene", "output", "beams", "seed", "set", "sweep"}, "a job");
+  jf::checkObject(c, job, "", {"scene", "output", "state", "beams", "seed", "set", "sweep"}, "a job");
   const std::string sceneName = jf::getString(c, jf::require(c, job, "", "scene", " (the scene file)"), "/scene");
   const bool relative = !fs::path(sceneName).is_absolute();
   spec.scenePath = (relative ? c.dir / sceneName : fs::path(sceneName)).lexically_normal();
@@ -165,6 +167,16 @@ LineSpec parseLine(const fs::path& file, size_t number, const std::string& text)
   if (auto* x = jf::find(job, "beams")) spec.beams = jf::getU64(c, *x, "/beams", 1);
   if (auto* x = jf::find(job, "seed")) spec.seed = jf::getU64(c, *x, "/seed", 0);
   if (auto* x = jf::find(job, "output")) spec.outputPattern = jf::getString(c, *x, "/output");
+  if (auto* x = jf::find(job, "state")) {
+    spec.statePattern = jf::getString(c, *x, "/state");
+    // merge and render --resume develop a state from its scene file, which
+    // must hash as it did: a scene changed by the job's overrides is in no file.
+    for (const char* key : {"set", "sweep"})
+      if (jf::find(job, key))
+        c.fail("/state", fmt::format("a job with \"{}\" cannot write a state: merge and render --resume develop a "
+                                     "state from its scene file, and the scene this job renders is in no file",
+                                     key));
+  }
   if (auto* x = jf::find(job, "sweep")) {
     spec.sweep = readSweep(c, *x, text);
     const auto& pattern = spec.outputPattern;
@@ -197,10 +209,12 @@ void checkJobCount(const LineSpec& spec, uint64_t before, uint64_t maxJobs) {
 // Scene files by path, each read once and held (up to kSceneCacheBytes).
 class SceneCache {
  public:
-  std::shared_ptr<const Json> get(const jf::Source& c, const fs::path& path) {
+  // The file's JSON, and with `sha256` the digest of its bytes.
+  std::shared_ptr<const Json> get(const jf::Source& c, const fs::path& path, std::string* sha256 = nullptr) {
     auto it = held_.find(path.string());
     if (it == held_.end()) it = read(path);
     if (!it->second.json) c.fail("/scene", it->second.error);
+    if (sha256) *sha256 = it->second.sha256;
     return it->second.json;
   }
   uint64_t reads() const { return reads_; }
@@ -208,7 +222,8 @@ class SceneCache {
  private:
   struct Held {
     std::shared_ptr<const Json> json;
-    std::string error;  // when json is null
+    std::string sha256;  // of the file's bytes
+    std::string error;   // when json is null
   };
   std::unordered_map<std::string, Held>::iterator read(const fs::path& path) {
     std::error_code ec;
@@ -219,7 +234,7 @@ class SceneCache {
     }
     Held held;
     try {
-      held.json = std::make_shared<const Json>(readSceneJson(path));
+      held.json = std::make_shared<const Json>(readSceneJson(path, &held.sha256));
       if (ec == std::error_code()) bytes_ += size;
     } catch (const SceneError& e) {
       held.error = e.what();
@@ -231,10 +246,11 @@ class SceneCache {
   uint64_t bytes_ = 0, reads_ = 0;
 };
 
-// The line's scene with its "set" overrides applied.
-std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes) {
+// The line's scene with its "set" overrides applied; `fileSha256`: the
+// scene file's digest.
+std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes, std::string* fileSha256 = nullptr) {
   const jf::Source& c = spec.c;
-  std::shared_ptr<const Json> scene = scenes.get(c, spec.scenePath);
+  std::shared_ptr<const Json> scene = scenes.get(c, spec.scenePath, fileSha256);
   const Json* set = jf::find(spec.job, "set");
   if (!set) return scene;
   if (!set->is_object()) c.fail("/set", fmt::format("must be an object of JSON pointer: value (got {})", jf::describe(*set)));
@@ -270,6 +286,7 @@ struct JobReader::State {
     std::string where;
     std::optional<LineSpec> spec;        // none for a bad line
     std::shared_ptr<const Json> base;    // the scene with "set" applied
+    std::string fileSha256;              // the scene file's digest
     std::string error;                   // for a bad line
     uint64_t count = 1, index = 0;
     bool swept = false;
@@ -285,13 +302,20 @@ struct JobReader::State {
   size_t nextLine = 0;
   std::optional<Current> current;
   std::unordered_map<std::string, Owner> outputs;  // by the output without its extension
+  std::unordered_map<std::string, Owner> states;   // by the state file
 
   std::string whereOf(size_t number) const { return fmt::format("{}:{}", file.string(), number); }
+  std::string whereOf(const Owner& owner) const {
+    return owner.swept ? fmt::format("{} [{}]", whereOf(owner.number), owner.index) : whereOf(owner.number);
+  }
   void plan(size_t begin, size_t size, size_t number);
   Current open(size_t line);
   JobEntry entryOf(const Current& line, uint64_t index);
   void buildJob(const Current& line, uint64_t index, JobEntry& entry);
+  fs::path outputFile(const jf::Source& jc, const std::string& field, const std::string& what, const LineSpec& spec,
+                      const std::string& name) const;
   fs::path claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene);
+  fs::path claimState(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene);
 };
 
 // The first pass over one job line: checked, its scene read (once per
@@ -365,7 +389,7 @@ JobReader::State::Current JobReader::State::open(size_t index) {
   try {
     line.spec = parseLine(file, planned.number, bytes.substr(planned.begin, planned.size));
     line.swept = !line.spec->sweep.empty();
-    line.base = baseOf(*line.spec, scenes);
+    line.base = baseOf(*line.spec, scenes, &line.fileSha256);
   } catch (const JobError& e) {  // a scene that changed since the first pass
     line.error = e.what();
   } catch (const nlohmann::json::exception& e) {
@@ -422,13 +446,18 @@ void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& e
     applyOverride(jc, jf::child("/sweep", sweep[k].first), scene, sweep[k].first, sweep[k].second[digits[k]],
                   spec.scenePath);
   entry.output = claimOutput(jc, line, index, scene);
+  const fs::path state = spec.statePattern ? claimState(jc, line, index, scene) : fs::path();
   RenderJob job;
   try {
     job.scene = parseSceneJson(scene, spec.scenePath);
   } catch (const SceneError& e) {
     jc.fail(sweep.empty() && !jf::find(spec.job, "set") ? "/scene" : "/scene (with the job's overrides)", e.what());
   }
+  // The scene file's digest, as render's: a state names the file to develop it from.
+  if (sweep.empty() && !jf::find(spec.job, "set")) job.scene.sourceSha256 = line.fileSha256;
   job.output = entry.output;
+  job.state = state;
+  job.stateRole = "state";
   job.beams = spec.beams;
   job.seed = spec.seed;
   entry.beams = job.beamCount();
@@ -438,18 +467,25 @@ void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& e
 // The job's output, refused unless it ends in .exr (its PNG preview would
 // be the same file or unrelated to it) and no earlier job of the file has
 // it or its PNG preview. One hash lookup per job.
-fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene) {
-  const LineSpec& spec = *line.spec;
-  const std::string name =
-      spec.outputPattern ? expandPattern(jc, *spec.outputPattern, index, scene) : spec.scenePath.stem().string() + ".exr";
-  fs::path output = name;
-  if (output.is_relative()) output = options.outDir ? *options.outDir / output : spec.c.dir / output;
-  output = output.lexically_normal();
+// An output or state file named by the job: resolved against the output
+// folder (default: the job file's), refused if it holds a NUL character.
+fs::path JobReader::State::outputFile(const jf::Source& jc, const std::string& field, const std::string& what,
+                                      const LineSpec& spec, const std::string& name) const {
+  fs::path path = name;
+  if (path.is_relative()) path = options.outDir ? *options.outDir / path : spec.c.dir / path;
   // The system reads a file name up to its first NUL: "a\u0000b.exr" would
   // write the EXR, and then its PNG preview, to "a".
   if (const size_t nul = name.find('\0'); nul != std::string::npos)
-    jc.fail("/output", fmt::format("output {} holds a NUL character, which no file name can (it would be cut to {})",
-                                   jf::jsonQuoted(name), jf::jsonQuoted(name.substr(0, nul))));
+    jc.fail(field, fmt::format("{} {} holds a NUL character, which no file name can (it would be cut to {})", what,
+                               jf::jsonQuoted(name), jf::jsonQuoted(name.substr(0, nul))));
+  return path.lexically_normal();
+}
+
+fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene) {
+  const LineSpec& spec = *line.spec;
+  const std::string name = spec.outputPattern ? expandPattern(jc, "/output", *spec.outputPattern, index, scene)
+                                              : spec.scenePath.stem().string() + ".exr";
+  const fs::path output = outputFile(jc, "/output", "output", spec, name);
   const std::string extension = output.extension().string();
   if (lowerCase(extension) != ".exr") {
     const std::string from = spec.outputPattern && *spec.outputPattern != name
@@ -458,14 +494,40 @@ fs::path JobReader::State::claimOutput(const jf::Source& jc, const Current& line
     jc.fail("/output", fmt::format("output {}{} must end in .exr (the PNG preview is written beside it as .png)",
                                    output.string(), from));
   }
+  const fs::path preview = fs::path(output).replace_extension(".png");
+  if (auto state = states.find(output.string()); state != states.end())
+    jc.fail("/output", fmt::format("{} is also the state of {}", output.string(), whereOf(state->second)));
+  if (auto state = states.find(preview.string()); state != states.end())
+    jc.fail("/output", fmt::format("its PNG preview {} is also the state of {}", preview.string(), whereOf(state->second)));
   const auto [it, mine] = outputs.try_emplace(fs::path(output).replace_extension().string(),
                                               Owner{line.number, index, line.swept, extension});
   if (mine) return output;
   const Owner& owner = it->second;
-  const std::string other = owner.swept ? fmt::format("{} [{}]", whereOf(owner.number), owner.index) : whereOf(owner.number);
+  const std::string other = whereOf(owner);
   if (owner.extension == extension) jc.fail("/output", fmt::format("{} is also the output of {}", output.string(), other));
-  jc.fail("/output", fmt::format("its PNG preview {} is also that of {}", fs::path(output).replace_extension(".png").string(),
-                                 other));
+  jc.fail("/output", fmt::format("its PNG preview {} is also that of {}", preview.string(), other));
+}
+
+// The job's state, refused when an earlier job of the file writes that file
+// (its state, output or PNG preview); the job's own output and PNG preview
+// are refused by checkOutputPath before it renders. One hash lookup or two.
+fs::path JobReader::State::claimState(const jf::Source& jc, const Current& line, uint64_t index, const Json& scene) {
+  const LineSpec& spec = *line.spec;
+  const fs::path state = outputFile(jc, "/state", "state", spec,
+                                    expandPattern(jc, "/state", *spec.statePattern, index, scene));
+  const std::string extension = state.extension().string();
+  if (auto it = outputs.find(fs::path(state).replace_extension().string()); it != outputs.end()) {
+    const Owner& owner = it->second;
+    if (owner.number != line.number || owner.index != index) {
+      if (extension == owner.extension)
+        jc.fail("/state", fmt::format("{} is also the output of {}", state.string(), whereOf(owner)));
+      if (extension == ".png")
+        jc.fail("/state", fmt::format("{} is also the PNG preview of {}", state.string(), whereOf(owner)));
+    }
+  }
+  const auto [it, mine] = states.try_emplace(state.string(), Owner{line.number, index, line.swept, extension});
+  if (!mine) jc.fail("/state", fmt::format("{} is also the state of {}", state.string(), whereOf(it->second)));
+  return state;
 }
 
 }  // namespace spectrace

@@ -6,9 +6,12 @@
 // "set" overrides scene fields by JSON pointer before the scene is parsed
 // and validated; "sweep" ({pointer: [values...]}) expands a line into the
 // Cartesian product of its values (first key outermost), named by an output
-// pattern with {index} and {<pointer>} placeholders. Relative scene paths
-// resolve against the job file's folder, relative outputs against the
-// output folder (default: the job file's folder).
+// pattern with {index} and {<pointer>} placeholders. "state" names the
+// job's render state (as render --state), with the same placeholders, on a
+// line without "set" or "sweep" (merge and resume develop a state from its
+// scene file). Relative scene paths resolve against the job file's folder,
+// relative outputs and states against the output folder (default: the job
+// file's folder).
 //
 // A JobReader reads a job file in two passes. The first, in the
 // constructor, checks every line and counts its jobs without building any
@@ -82,7 +85,8 @@ class JobReader {
   uint64_t total() const;
   // The next job in file order (a sweep's in index order), built now, or
   // none after the last. An output that is not an .exr, or that an earlier
-  // job of the file already has, makes the entry an error.
+  // job of the file already has, makes the entry an error; so does a state
+  // that an earlier job writes (as its state, output or PNG preview).
   std::optional<JobEntry> next();
   // Scene files read from disk so far: each once, however many lines and
   // jobs name it (unless the scenes held pass kSceneCacheBytes).

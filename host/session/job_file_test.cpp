@@ -221,6 +221,56 @@ TEST_F(JobFileTest, AnOutputWithANulCharacterIsRefused) {
   ASSERT_TRUE(entries[2].job) << entries[2].error;
 }
 
+TEST_F(JobFileTest, AStateIsNamedLikeTheOutputAndClaimedOnce) {
+  const auto entries = read(
+      R"({"scene": "lamp.json", "output": "a.exr", "state": "{/lights/0/type}_{/render/seed}_{index}.state"})" "\n"
+      R"({"scene": "lamp.json", "output": "b.exr", "state": "spot_1_0.state"})" "\n"
+      R"({"scene": "lamp.json", "output": "c.exr", "state": "a.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "d.exr", "state": "a.png"})" "\n"
+      R"({"scene": "lamp.json", "output": "spot_1_0.state.exr", "state": "e.state"})" "\n"
+      R"({"scene": "lamp.json", "output": "e.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "f.exr", "state": "{/nothing}.state"})" "\n"
+      R"({"scene": "lamp.json", "output": "g.exr", "state": "g.state", "set": {"/lights/0/power_w": 2}})" "\n"
+      R"({"scene": "lamp.json", "output": "h.exr", "state": "h\u0000.state"})" "\n");
+  ASSERT_EQ(entries.size(), 9u);
+  ASSERT_TRUE(entries[0].job) << entries[0].error;
+  EXPECT_EQ(entries[0].job->state, dir / "spot_1_0.state");
+  EXPECT_EQ(entries[0].job->stateRole, "state");
+  // The scene file's own digest, as render records it: merge and resume check it.
+  EXPECT_EQ(entries[0].job->scene.sourceSha256, loadScene(dir / "lamp.json").sourceSha256);
+  const std::string first = jobsFile() + ":1";
+  EXPECT_EQ(entries[1].error, jobsFile() + ":2: /state: " + (dir / "spot_1_0.state").string() + " is also the state of " + first);
+  EXPECT_EQ(entries[2].error, jobsFile() + ":3: /state: " + (dir / "a.exr").string() + " is also the output of " + first);
+  EXPECT_EQ(entries[3].error, jobsFile() + ":4: /state: " + (dir / "a.png").string() + " is also the PNG preview of " + first);
+  ASSERT_TRUE(entries[4].job) << entries[4].error;  // another file than spot_1_0.state
+  ASSERT_TRUE(entries[5].job) << entries[5].error;  // e.exr beside the state e.state
+  EXPECT_NE(entries[6].error.find(":7: /state: {/nothing} names no field of the scene"), std::string::npos)
+      << entries[6].error;
+  EXPECT_NE(entries[7].error.find(":8: /state: a job with \"set\" cannot write a state"), std::string::npos)
+      << entries[7].error;
+  EXPECT_NE(entries[8].error.find(":9: /state: state \"h\\u0000.state\" holds a NUL"), std::string::npos)
+      << entries[8].error;
+}
+
+TEST_F(JobFileTest, AnOutputOntoAnEarlierStateIsRefused) {
+  const auto entries = read(
+      R"({"scene": "lamp.json", "output": "a.exr", "state": "s.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "s.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "b.exr", "state": "t.png"})" "\n"
+      R"({"scene": "lamp.json", "output": "t.exr"})" "\n"
+      R"({"scene": "lamp.json", "output": "c.exr", "sweep": {"/lights/0/power_w": [1, 2]}, "state": "c.state"})" "\n");
+  ASSERT_EQ(entries.size(), 5u);
+  ASSERT_TRUE(entries[0].job) << entries[0].error;
+  EXPECT_EQ(entries[1].error, jobsFile() + ":2: /output: " + (dir / "s.exr").string() + " is also the state of " +
+                                  jobsFile() + ":1");
+  ASSERT_TRUE(entries[2].job) << entries[2].error;
+  EXPECT_EQ(entries[3].error, jobsFile() + ":4: /output: its PNG preview " + (dir / "t.png").string() +
+                                  " is also the state of " + jobsFile() + ":3");
+  // A swept scene is in no file to develop the state from.
+  EXPECT_NE(entries[4].error.find(":5: /state: a job with \"sweep\" cannot write a state"), std::string::npos)
+      << entries[4].error;
+}
+
 TEST_F(JobFileTest, TheCancelFlagStopsReadingBetweenLines) {
   std::atomic<bool> cancel{true};
   JobReaderOptions options;

@@ -174,13 +174,14 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
     all.push_back(object.shape.meshFile);
     all.push_back(object.material.reflectanceFile);
   }
-  checkOutputFiles(outputFilesOf(job.output, job.png, job.state), all);
+  checkOutputFiles(outputFilesOf(job.output, job.png, job.state, job.stateRole), all);
 }
 
-std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png, const std::filesystem::path& state) {
+std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png, const std::filesystem::path& state,
+                                      const std::string& stateRole) {
   std::vector<OutputFile> files{{exr, "output", ".exr"}};
   if (png) files.push_back({std::filesystem::path(exr).replace_extension(".png"), "PNG preview", ".png"});
-  if (!state.empty()) files.push_back({state, "--state", ""});
+  if (!state.empty()) files.push_back({state, stateRole, ""});
   return files;
 }
 
@@ -206,7 +207,8 @@ void checkOutputFile(const OutputFile& output, const std::vector<std::filesystem
     const fs::path target = fs::read_symlink(output.path, er);
     throw OutputPathError(fmt::format("{} is a symbolic link (to {}); outputs replace their file, so name the file "
                                       "itself",
-                                      name, er ? std::string("an unreadable target") : target.string()));
+                                      name, er ? std::string("an unreadable target") : target.string()),
+                          output.role);
   }
   const fs::file_status st = fs::status(output.path, ec);
   if (!ec && fs::exists(st)) {
@@ -215,19 +217,23 @@ void checkOutputFile(const OutputFile& output, const std::vector<std::filesystem
       std::error_code eq;
       if (fs::equivalent(output.path, input, eq) && !eq)
         throw OutputPathError(fmt::format("{} is the input file {}; an input is never overwritten", name,
-                                          input.string()));
+                                          input.string()),
+                              output.role);
     }
     if (!fs::is_regular_file(st))
       throw OutputPathError(fmt::format("{} exists and is not a regular file ({}); refusing to replace it", name,
-                                        fs::is_directory(st) ? "a folder" : "a device, pipe or socket"));
+                                        fs::is_directory(st) ? "a folder" : "a device, pipe or socket"),
+                            output.role);
   }
   if (!output.extension.empty() && lowerCaseExtension(output.path) != output.extension)
     throw OutputPathError(fmt::format("{} must end in {} (the PNG preview is written beside it as .png)", name,
-                                      output.extension));
+                                      output.extension),
+                          output.role);
   const fs::path folder = output.path.parent_path().empty() ? fs::path(".") : output.path.parent_path();
   fs::create_directories(folder, ec);
   if (ec)
-    throw OutputPathError(fmt::format("cannot create the folder {} for {}: {}", folder.string(), name, ec.message()));
+    throw OutputPathError(fmt::format("cannot create the folder {} for {}: {}", folder.string(), name, ec.message()),
+                          output.role);
   // A probe file proves the folder takes a new file (permissions, read-only
   // file systems) before any beam is traced; the real write is atomic later.
   const fs::path probe = folder / fmt::format(".{}.probe-{}", output.path.filename().string(), ::getpid());
@@ -235,7 +241,8 @@ void checkOutputFile(const OutputFile& output, const std::vector<std::filesystem
   if (fd < 0) {
     const int err = errno;
     throw OutputPathError(fmt::format("cannot write {}: cannot create a file in {}: {}", name, folder.string(),
-                                      std::error_code(err, std::generic_category()).message()));
+                                      std::error_code(err, std::generic_category()).message()),
+                          output.role);
   }
   ::close(fd);
   ::unlink(probe.c_str());
@@ -251,7 +258,8 @@ void checkOutputFiles(const std::vector<OutputFile>& outputs, const std::vector<
     for (size_t j = 0; j < i; ++j)
       if (fs::weakly_canonical(fs::absolute(outputs[j].path)) == mine)
         throw OutputPathError(fmt::format("{} {} is also this run's {}; each output needs a file of its own",
-                                          outputs[i].role, outputs[i].path.string(), outputs[j].role));
+                                          outputs[i].role, outputs[i].path.string(), outputs[j].role),
+                              outputs[i].role);
   }
 }
 

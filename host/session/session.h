@@ -40,6 +40,8 @@ struct RenderJob {
   // The exact render state, written at every checkpoint and at the end
   // (film/film_state.h); none when empty.
   std::filesystem::path state;
+  // What names the state in messages: the option or job key that gave it.
+  std::string stateRole = "--state";
   // A state to go on from: it must be this job's (same fingerprint) and
   // cover beams [firstBeam, firstBeam + k); the render traces the rest.
   std::optional<FilmState> resume;
@@ -61,7 +63,8 @@ struct OutputError : std::runtime_error {
 // The output path is unusable (bad input, found before tracing): an input
 // file, a device node or folder, not ending in .exr, or not writable.
 struct OutputPathError : OutputError {
-  using OutputError::OutputError;
+  OutputPathError(const std::string& message, std::string role) : OutputError(message), role(std::move(role)) {}
+  std::string role;  // the refused file's OutputFile::role
 };
 
 // One file a run writes: its path, what names it in messages ("output",
@@ -81,9 +84,9 @@ struct OutputFile {
 // the reason.
 void checkOutputFiles(const std::vector<OutputFile>& outputs, const std::vector<std::filesystem::path>& inputs);
 // The files a job writes: its EXR, its PNG preview (when written) and its
-// state (when asked for).
+// state (when asked for, named `stateRole` in messages).
 std::vector<OutputFile> outputFilesOf(const std::filesystem::path& exr, bool png,
-                                      const std::filesystem::path& state);
+                                      const std::filesystem::path& state, const std::string& stateRole = "--state");
 // checkOutputFiles for the job's outputs; the scene file, its CSV spectra,
 // its OBJ meshes and any of `inputs` are inputs (a state the job resumes
 // from may be its own --state, which it replaces). With spectral channels
