@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <ImfChannelList.h>
+#include <ImfChromaticities.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
@@ -118,6 +120,28 @@ TEST(SpectralFilm, WithoutSpectralOnlyTheErrorChannelIsAdded) {
   EXPECT_NE(std::find(names.begin(), names.end(), "error.E"), names.end());
   Imf::InputFile in(path.c_str());
   EXPECT_EQ(in.header().findTypedAttribute<Imf::StringAttribute>("spectralLayoutVersion"), nullptr);
+  fs::remove(path);
+}
+
+TEST(SpectralFilm, RgbChannelsCarryRec709PrimariesAndD65White) {
+  RenderOptions options;
+  options.beams = 10'000;
+  options.device = DeviceChoice::Cpu;
+  const RenderResult result = render(laserScene(), options);
+  const fs::path path = writeTemp(result.image, "chromaticities");
+  Imf::InputFile in(path.c_str());
+  ASSERT_TRUE(Imf::hasChromaticities(in.header()));
+  const Imf::Chromaticities& c = Imf::chromaticities(in.header());
+  // Rec. 709 / sRGB primaries and D65 white (ITU-R BT.709, IEC 61966-2-1),
+  // those the R, G, B channels are converted to.
+  EXPECT_FLOAT_EQ(c.red.x, 0.64f);
+  EXPECT_FLOAT_EQ(c.red.y, 0.33f);
+  EXPECT_FLOAT_EQ(c.green.x, 0.30f);
+  EXPECT_FLOAT_EQ(c.green.y, 0.60f);
+  EXPECT_FLOAT_EQ(c.blue.x, 0.15f);
+  EXPECT_FLOAT_EQ(c.blue.y, 0.06f);
+  EXPECT_FLOAT_EQ(c.white.x, 0.3127f);
+  EXPECT_FLOAT_EQ(c.white.y, 0.3290f);
   fs::remove(path);
 }
 

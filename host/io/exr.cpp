@@ -1,12 +1,14 @@
 // OpenEXR output and input of RenderImage (float32, lossless ZIP).
 #include <Iex.h>
 #include <ImfChannelList.h>
+#include <ImfChromaticities.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfThreading.h>
 
@@ -73,7 +75,15 @@ class FdOStream final : public Imf::OStream {
 constexpr const char* kErrorChannel = "error.E";
 // The spectral layout's header attributes (Fichet, Pacanowski, Wilkie 2021).
 constexpr const char* kSpectralLayoutVersion = "spectralLayoutVersion";
+// Spectral irradiance, which the channels hold (not the layout's radiance,
+// W.m^-2.sr^-1: the film counts power per area, with no solid angle).
 constexpr const char* kEmissiveUnits = "emissiveUnits";
+
+// R, G, B are linear sRGB: Rec. 709 primaries and D65 white, those
+// xyzToLinearSrgb (colour/) is derived from. Set explicitly, not left to
+// Imf::Chromaticities' defaults, so the values are ours whatever they hold.
+const Imf::Chromaticities kRec709D65{Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
+                                     Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)};
 
 // The wavelength of a spectral layout channel name "S0.<nm>nm", or a
 // negative value when the name is not one.
@@ -151,6 +161,7 @@ void writeExr(const std::filesystem::path& path, const RenderImage& image, const
   try {
     Imf::Header header(image.width, image.height);  // data window (0,0)..(w-1,h-1), INCREASING_Y
     header.compression() = Imf::ZIP_COMPRESSION;    // lossless, so floats round-trip bit-exactly
+    Imf::addChromaticities(header, kRec709D65);     // what R, G, B mean, for colour-managed readers
     // Reject user names that collide with standard attributes or with each
     // other: Header::insert would either throw a cryptic type error or
     // silently replace one value.

@@ -42,7 +42,8 @@ struct ImageIoError : std::runtime_error {
 // one channel per bin in the spectral OpenEXR layout of Fichet, Pacanowski
 // and Wilkie (JCGT 10(3), 2021): "S0.<nm>nm" (spectralChannelName), with
 // the header attributes spectralLayoutVersion = "1.0" and emissiveUnits =
-// "W.m^-2.nm^-1".
+// "W.m^-2.nm^-1". The standard chromaticities attribute gives R, G, B's
+// Rec. 709 primaries and D65 white.
 // Written to a temporary file beside `path` and renamed, so an interrupted
 // write never leaves a truncated image.
 void writeExr(const std::filesystem::path& path, const RenderImage& image, const ImageMetadata& meta);
