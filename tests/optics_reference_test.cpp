@@ -346,6 +346,36 @@ TEST_P(OpticsReference, DiffusePlateThroughAPinhole) {
 // Legendre), in W/m^2 over the whole spectrum. Checked where the whole
 // pixel sees the square inside the spot's cone. (The scene is symmetric in
 // x, so the camera frame's x sense is moot.)
+// A closed form's image: the pixels that lie wholly where `inside(x, y)`
+// holds (checked at their corners, with a tenth of a pixel to spare), each
+// with its mean of `integrand(x, y)` over the pixel (4 x 4 Gauss-Legendre);
+// x, y are sensor-plane coordinates in metres.
+struct ClosedFormPixels {
+  std::vector<double> expected;  // W/m^2 of each checked pixel
+  std::vector<size_t> pixels;    // the pixels checked
+};
+template <typename Inside, typename Integrand>
+ClosedFormPixels closedFormPixels(const Camera& camera, Inside inside, Integrand integrand) {
+  ClosedFormPixels out;
+  const Quadrature q = gaussLegendre01(4);
+  for (int row = 0; row < camera.pixelsY; ++row)
+    for (int col = 0; col < camera.pixelsX; ++col) {
+      const SensorRect r = pixelOnSensor(camera, col, row);
+      const double mx = 0.1 * (r.x2 - r.x1), my = 0.1 * (r.y2 - r.y1);
+      bool whole = true;
+      for (double x : {r.x1 - mx, r.x2 + mx})
+        for (double y : {r.y1 - my, r.y2 + my}) whole = whole && inside(x, y);
+      if (!whole) continue;
+      double sum = 0.0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          sum += q.w[i] * q.w[j] * integrand(r.x1 + (r.x2 - r.x1) * q.x[i], r.y1 + (r.y2 - r.y1) * q.x[j]);
+      out.expected.push_back(sum);
+      out.pixels.push_back(size_t(row) * camera.pixelsX + col);
+    }
+  return out;
+}
+
 struct LitGreySquare {
   Scene scene;
   std::vector<double> expected;  // W/m^2 of each checked pixel
@@ -370,29 +400,17 @@ LitGreySquare litGreySquare() {
   auto lit = [&](const glm::dvec3& p) {
     return std::abs(p.x) < half && std::abs(p.y) < half && glm::dot(glm::normalize(p - spot.position), axis) > cosCone;
   };
-  const Quadrature q = gaussLegendre01(4);
-  for (int row = 0; row < scene.camera.pixelsY; ++row)
-    for (int col = 0; col < scene.camera.pixelsX; ++col) {
-      const SensorRect r = pixelOnSensor(scene.camera, col, row);
-      // Whole pixels only, with a margin of a tenth of a pixel.
-      const double mx = 0.1 * (r.x2 - r.x1), my = 0.1 * (r.y2 - r.y1);
-      bool inside = true;
-      for (double x : {r.x1 - mx, r.x2 + mx})
-        for (double y : {r.y1 - my, r.y2 + my}) inside = inside && lit(seen(x, y));
-      if (!inside) continue;
-      double sum = 0.0;
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          const double x = r.x1 + (r.x2 - r.x1) * q.x[i], y = r.y1 + (r.y2 - r.y1) * q.x[j];
-          const glm::dvec3 p = seen(x, y), toSpot = spot.position - p;
-          const double r2 = glm::dot(toSpot, toSpot);
-          const double irradiance = intensity * (-toSpot.z / std::sqrt(r2)) / r2;  // the square faces -z
-          const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
-          sum += q.w[i] * q.w[j] * rho / kPi * irradiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
-        }
-      s.expected.push_back(sum);
-      s.pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
-    }
+  const ClosedFormPixels image = closedFormPixels(
+      scene.camera, [&](double x, double y) { return lit(seen(x, y)); },
+      [&](double x, double y) {
+        const glm::dvec3 p = seen(x, y), toSpot = spot.position - p;
+        const double r2 = glm::dot(toSpot, toSpot);
+        const double irradiance = intensity * (-toSpot.z / std::sqrt(r2)) / r2;  // the square faces -z
+        const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
+        return rho / kPi * irradiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
+      });
+  s.expected = image.expected;
+  s.pixels = image.pixels;
   return s;
 }
 
@@ -482,28 +500,13 @@ TEST_P(OpticsReference, EmitterSquareMatchesItsClosedForm) {
   const double d = pinholeOf(scene.camera)->distanceM, ra = pinholeOf(scene.camera)->radiusM;
   const double z = 1.1, half = 0.3;
   const double radiance = square.powerW / (kPi * square.sizeM.x * square.sizeM.y);
-  const Quadrature q = gaussLegendre01(4);
-  std::vector<double> expected;
-  std::vector<size_t> pixels;
-  for (int row = 0; row < scene.camera.pixelsY; ++row)
-    for (int col = 0; col < scene.camera.pixelsX; ++col) {
-      const SensorRect r = pixelOnSensor(scene.camera, col, row);
-      const double mx = 0.1 * (r.x2 - r.x1), my = 0.1 * (r.y2 - r.y1);
-      bool inside = true;
-      for (double x : {r.x1 - mx, r.x2 + mx})
-        for (double y : {r.y1 - my, r.y2 + my})
-          inside = inside && std::abs(x * (z - d) / d) < half && std::abs(y * (z - d) / d) < half;
-      if (!inside) continue;
-      double sum = 0.0;
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          const double x = r.x1 + (r.x2 - r.x1) * q.x[i], y = r.y1 + (r.y2 - r.y1) * q.x[j];
-          const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
-          sum += q.w[i] * q.w[j] * radiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
-        }
-      expected.push_back(sum);
-      pixels.push_back(size_t(row) * scene.camera.pixelsX + col);
-    }
+  const auto [expected, pixels] = closedFormPixels(
+      scene.camera,
+      [&](double x, double y) { return std::abs(x * (z - d) / d) < half && std::abs(y * (z - d) / d) < half; },
+      [&](double x, double y) {
+        const double cosTheta = d / std::sqrt(x * x + y * y + d * d);
+        return radiance * kPi * ra * ra * std::pow(cosTheta, 4) / (d * d);
+      });
   ASSERT_GT(pixels.size(), 300u) << "the square fills the middle of the image";
 
   for (const uint32_t k : {1u, 4u}) {  // wavelengths a beam
