@@ -106,8 +106,8 @@ FN bool surviveReflectance(WavelengthFactors rho, float choice, INOUT(PathWavele
 // one copy of the count instead of unrolling four.)
 FN void contributeCounts(INOUT(BeamTally) tally, uvec2 cell, PathWavelengths w, WavelengthFactors count,
                          float spareUniform) {
-  uint chunk;
-  uint base;
+  uint chunk = 0u;  // set by storedCounters; unread when recording
+  uint base = 0u;
   bool counted = SPECTRACE_RECORDING || storedCounters(cell, chunk, base);
   if (!counted) return;
   PRECISE float sum = 0.0f;
