@@ -170,9 +170,11 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   const device::BeamKernel kernel = beamKernel(counters_);
   std::atomic<uint64_t> counted{0};
   // Threads take blocks of beams in order. When cancelled, each finishes
-  // its block, so the traced beams stay one contiguous prefix.
-  constexpr uint64_t kBlock = 1 << 16;
-  const uint64_t blockCount = (beamCount + kBlock - 1) / kBlock;
+  // its block, so the traced beams stay one contiguous prefix. Blocks are
+  // small enough that every thread gets several (a short batch keeps both
+  // cores busy) and a cancel is seen soon; the counts do not depend on them.
+  const uint64_t blockBeams = std::clamp<uint64_t>(beamCount / (uint64_t(threads_) * 4), 1 << 8, 1 << 16);
+  const uint64_t blockCount = (beamCount + blockBeams - 1) / blockBeams;
   std::atomic<uint64_t> nextBlock{0};
   std::atomic<uint64_t> stoppedAtBlock{blockCount};
   auto worker = [&] {
@@ -187,8 +189,8 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
         while (block < expected && !stoppedAtBlock.compare_exchange_weak(expected, block)) {}
         break;
       }
-      const uint64_t end = std::min(beamCount, (block + 1) * kBlock);
-      countedHere += traceBlock(code_, local, queues, firstBeam, block * kBlock, end, profileStage_);
+      const uint64_t end = std::min(beamCount, (block + 1) * blockBeams);
+      countedHere += traceBlock(code_, local, queues, firstBeam, block * blockBeams, end, profileStage_);
     }
     queues.groups[0].flush();
     queues.groups[1].flush();
@@ -199,7 +201,7 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   worker();
   pool.clear();  // joins
   countedBeams_ += counted.load();
-  return std::min(beamCount, stoppedAtBlock.load() * kBlock);
+  return std::min(beamCount, stoppedAtBlock.load() * blockBeams);
 }
 
 device::BeamKernel CpuTracer::beamKernel(std::span<uint64_t> counters) const {

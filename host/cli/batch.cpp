@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/progress_line.h"
 #include "session/job_file.h"
 #include "session/session.h"
 
@@ -44,8 +45,8 @@ void printTable(const std::vector<Row>& rows) {
 class BatchRun {
  public:
   BatchRun(const BatchCommand& command, const std::atomic<bool>& cancel, uint64_t total)
-      : command_(command), cancel_(cancel), total_(total), live_(!command.quiet && isatty(STDERR_FILENO)),
-        session_(parseDeviceChoice(command.device), logger(command.quiet), command.pipelineCache) {}
+      : command_(command), cancel_(cancel), total_(total), progress_(ProgressLine::forStderr()),
+        session_(parseDeviceChoice(command.device), logger(), command.pipelineCache) {}
 
   // Whether no further job may start (interrupted, or --fail-fast after a failure).
   bool stopped() const { return cancel_.load() || (failed_ && command_.failFast); }
@@ -63,12 +64,12 @@ class BatchRun {
     uint64_t beams;
   };
 
-  static std::function<void(const std::string&)> logger(bool quiet) {
-    if (quiet) return {};
-    return [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+  std::function<void(const std::string&)> logger() {
+    if (command_.quiet) return {};
+    return [this](const std::string& line) { progress_.notice(line); };
   }
   void fail(Row& row, const std::string& message) {
-    std::fprintf(stderr, "%sspectrace: error: %s\n", live_ ? "\r\033[K" : "", message.c_str());
+    progress_.notice("error: " + message);
     row.status = "FAILED";
     ++failed_;
   }
@@ -78,7 +79,7 @@ class BatchRun {
   const BatchCommand& command_;
   const std::atomic<bool>& cancel_;
   const uint64_t total_;
-  const bool live_;
+  ProgressLine progress_;  // before session_, whose log writes through it
   const Session session_;
   std::vector<Row> rows_;
   size_t failed_ = 0, rendered_ = 0, skipped_ = 0;
@@ -101,11 +102,8 @@ void BatchRun::collect() {
       ++rendered_;
     }
     if (!command_.quiet)
-      std::fprintf(stderr, "%s\n",
-                   fmt::format("{}spectrace: [{}/{}] {} -> {}: {} beams in {} s ({} Mbeam/s) on {}", live_ ? "\r\033[K" : "",
-                               i + 1, total_, row.job, row.output, result.beamsTraced, row.seconds, row.rate,
-                               result.deviceName)
-                       .c_str());
+      progress_.notice(fmt::format("[{}/{}] {} -> {}: {} beams in {} s ({} Mbeam/s) on {}", i + 1, total_, row.job,
+                                   row.output, result.beamsTraced, row.seconds, row.rate, result.deviceName));
   } catch (const OutputError& e) {
     fail(row, fmt::format("{}: /output: {}", row.job, e.what()));
   } catch (const std::exception& e) {
@@ -121,11 +119,17 @@ std::string BatchRun::render(JobEntry& entry, size_t i) {
   job.png = command_.png;
   job.loop.cancel = &cancel_;
   job.outputs.downloadFilm = false;  // Session downloads it when the state or the spectral block needs it
-  if (live_)
-    job.loop.onProgress = [this, i, where = entry.where](uint64_t done, uint64_t all) {
-      std::fprintf(stderr, "\r\033[K%s", fmt::format("spectrace: [{}/{}] {}: {:5.1f}%", i + 1, total_, where,
-                                                    100.0 * double(done) / double(all)).c_str());
+  if (!command_.quiet) {
+    // Per job, only what is out of the ordinary: notes and warnings, named
+    // by the job (the device and estimator would repeat on every job).
+    job.loop.log = [this, where = entry.where](const std::string& line) {
+      if (line.starts_with("note:") || line.starts_with("warning:")) progress_.notice(where + ": " + line);
     };
+    job.loop.onStart = [this, i, where = entry.where](uint64_t done, uint64_t all) {
+      progress_.start(all, done, fmt::format("[{}/{}] {}: ", i + 1, total_, where));
+    };
+    job.loop.onProgress = [this](uint64_t done, uint64_t) { progress_.update(done); };
+  }
   try {
     checkOutputPath(job, {command_.jobs});  // the job file is an input too
     auto result = session_.renderOverlapped(job);
@@ -153,8 +157,7 @@ void BatchRun::run(JobEntry& entry) {
     rows_[i].status = "skipped (complete)";
     ++skipped_;
     if (!command_.quiet)
-      std::fprintf(stderr, "%s\n", fmt::format("spectrace: [{}/{}] {}: skipped, {} is complete", i + 1, total_,
-                                               entry.where, rows_[i].output).c_str());
+      progress_.notice(fmt::format("[{}/{}] {}: skipped, {} is complete", i + 1, total_, entry.where, rows_[i].output));
   } else {
     error = render(entry, i);
   }
@@ -166,6 +169,7 @@ void BatchRun::run(JobEntry& entry) {
 
 int BatchRun::finish(uint64_t notRun) {
   collect();
+  progress_.finish();
   if (notRun)  // one row for them all: a job is built only when it is about to run
     rows_.push_back(Row{fmt::format("the other {} job{}", notRun, notRun == 1 ? "" : "s"), "-", "-", "-", "-",
                         cancel_.load() ? "cancelled" : "not run (--fail-fast)"});

@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include "cli/cli_numbers.h"
+#include "cli/progress_line.h"
 
 #include <algorithm>
 #include <charconv>
@@ -156,37 +157,28 @@ int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   const bool several = command.scenes.size() > 1;
   std::vector<RenderJob> jobs = renderJobsOf(command, cancel, true);
 
+  ProgressLine progress = ProgressLine::forStderr();
   std::function<void(const std::string&)> log;
-  if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
+  if (!command.quiet) log = [&progress](const std::string& line) { progress.notice(line); };
   const Session session(parseDeviceChoice(command.device), log, command.pipelineCache);
   for (RenderJob& job : jobs) {
     const auto& output = job.output;
     const uint64_t beams = job.beamCount();
     if (!command.quiet) {
+      job.loop.log = log;
       job.loop.onCheckpoint = [&](const RenderImage&, uint64_t done, const std::string&) {
-        std::fprintf(stderr, "spectrace: checkpoint: %llu beams -> %s\n", (unsigned long long)done, output.c_str());
+        progress.notice(fmt::format("checkpoint: {} beams -> {}", done, output.string()));
       };
-      job.loop.onProgress = [](uint64_t done, uint64_t total) {
-        std::fprintf(stderr, "\rspectrace: %5.1f%% (%llu of %llu beams)", 100.0 * double(done) / double(total),
-                     (unsigned long long)done, (unsigned long long)total);
-        if (done == total) std::fprintf(stderr, "\n");
-      };
-      if (several) std::fprintf(stderr, "spectrace: rendering %s\n", job.scene.sourcePath.c_str());
+      job.loop.onStart = [&progress](uint64_t done, uint64_t total) { progress.start(total, done); };
+      job.loop.onProgress = [&progress](uint64_t done, uint64_t) { progress.update(done); };
+      if (several) progress.notice(fmt::format("rendering {}", job.scene.sourcePath.string()));
     }
     const RenderResult result = session.render(job);
     if (!command.quiet) {
-      std::fprintf(stderr, "spectrace: estimator: %s\n", estimatorsDescription(result.plan.device.constants.estimators));
-      for (const auto& light : result.plan.summaries) {
-        if (!light.traced)
-          std::fprintf(stderr, "spectrace: note: %s is never sampled: %s\n", light.label.c_str(),
-                       light.notTracedBecause.c_str());
-        else if (light.aimed)
-          std::fprintf(stderr, "spectrace: %s: beams aimed at the camera (largest weight %.3g)\n", light.label.c_str(),
-                       light.largestWeight);
-      }
+      progress.finish();
       // The rate of this run's beams: a resumed film's were traced before.
       const uint64_t thisRun = result.beamsTraced - result.beamsResumed;
-      std::fprintf(stderr, "\nspectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s%s\n", (unsigned long long)thisRun,
+      std::fprintf(stderr, "spectrace: %llu beams in %.2f s (%.1f Mbeam/s) on %s%s\n", (unsigned long long)thisRun,
                    result.wallSeconds, double(thisRun) / result.wallSeconds * 1e-6, result.deviceName.c_str(),
                    result.beamsResumed
                        ? fmt::format(", after {} resumed from the state", result.beamsResumed).c_str()

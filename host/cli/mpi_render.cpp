@@ -11,6 +11,7 @@
 #include "cli/cli_numbers.h"
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "cli/progress_line.h"
 #include "mpi/mpi_render.h"
 #include "mpi/mpi_world.h"
 
@@ -38,14 +39,14 @@ int collectively(const mpi::World& world, Step&& step) {
   return code;
 }
 
-void say(const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); }
-
 }  // namespace
 
 int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
   const mpi::World world;
   const bool root = world.isRoot();
   const bool talk = root && !command.quiet;
+  ProgressLine progress = ProgressLine::forStderr();
+  const auto say = [&progress](const std::string& line) { progress.notice(line); };
   std::vector<RenderJob> jobs;
   std::unique_ptr<Session> session;
   int code = collectively(world, [&] {
@@ -95,14 +96,13 @@ int runMpiRender(const RenderCommand& command, const std::atomic<bool>& cancel) 
     const BeamRange mine = mpi::rankBeams(job, world.rank(), world.size());
     if (talk) {
       say(fmt::format("{}: {} beams over {} MPI ranks", job.scene.sourcePath.string(), job.beamCount(), world.size()));
-      job.loop.onProgress = [](uint64_t done, uint64_t total) {
-        std::fprintf(stderr, "\rspectrace: rank 0: %5.1f%% of its %llu beams", 100.0 * double(done) / double(total),
-                     (unsigned long long)total);
-        if (done == total) std::fprintf(stderr, "\n");
-      };
+      job.loop.log = say;
+      job.loop.onStart = [&progress](uint64_t done, uint64_t total) { progress.start(total, done, "rank 0: "); };
+      job.loop.onProgress = [&progress](uint64_t done, uint64_t) { progress.update(done); };
     }
     RenderResult part;
     if ((code = collectively(world, [&] { part = mpi::traceBeams(session->device(), job, std::move(plans[j]), mine); })) != 0) return code;
+    if (talk) progress.finish();
 
     // What each rank finished (all of its range unless interrupted), and
     // the exact sum of their films on rank 0.

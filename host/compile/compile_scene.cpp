@@ -88,17 +88,24 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
   for (const Light& light : scene.lights) {
     LightSummary summary;
     const LightTypeUnit& unit = lightTypeUnit(light.type);
-    summary.label = fmt::format("{} ({}, {})", light.label, unit.name, light.spdLabel);
+    summary.label = light.name.empty()
+                        ? fmt::format("{} ({}, {})", light.label, unit.name, light.spdLabel)
+                        : fmt::format("light {} ({}, {}, {})", json_fields::jsonQuoted(light.name), light.label,
+                                      unit.name, light.spdLabel);
     summary.powerW = light.powerW;
     const Spd clipped = light.spd.clipped(range.minNm, range.maxNm);
     const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
     summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
     summary.tracedPowerW = light.powerW * summary.inRangeShare;
     const LightFrame local = lightFrame(light, unit, frame);
+    // Whether the light could shine on the camera with nothing in the way:
+    // without objects a light that cannot is never sampled; with objects it
+    // is, for what it lights, and the render says so before tracing.
+    summary.cannotShineOnCameraBecause = unit.unreachableBecause(light, local, scene.camera);
     if (!(summary.tracedPowerW > 0.0)) {
       summary.notTracedBecause = light.powerW > 0.0 ? "it has no power inside the spectrum range" : "its power is zero";
     } else if (skip) {
-      summary.notTracedBecause = unit.unreachableBecause(light, local, scene.camera);
+      summary.notTracedBecause = summary.cannotShineOnCameraBecause;
     }
     if (summary.notTracedBecause.empty()) {
       summary.traced = true;

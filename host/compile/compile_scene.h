@@ -40,7 +40,7 @@ struct DeviceScene {
 
 // What became of one scene light, for messages and the bench.
 struct LightSummary {
-  std::string label;       // e.g. "/lights/2 (disk, D65)"
+  std::string label;       // e.g. "/lights/2 (disk, D65)", or with a name light "lamp" (/lights/2, disk, D65)
   double powerW = 0.0;     // as given
   double inRangeShare = 0.0;  // share of the emission inside the spectrum range
   double tracedPowerW = 0.0;  // powerW * inRangeShare
@@ -50,6 +50,9 @@ struct LightSummary {
   // light's emission that is sampled (1 when not aimed).
   double largestWeight = 1.0;
   std::string notTracedBecause;  // why, when not traced
+  // Why no beam of it can reach the camera directly, objects aside (the
+  // light unit's reach test), or "" when one might.
+  std::string cannotShineOnCameraBecause;
 };
 
 struct CompiledScene {

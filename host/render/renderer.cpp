@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 
 #include "colour/colour.h"
+#include "compile/estimators.h"
 #include "json/scene_error.h"
 
 namespace spectrace {
@@ -40,12 +41,19 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Beams per batch: about a second of work, between 2^20 and 2^30.
+// Beams per batch: about half a second of work at the rate measured so far,
+// so progress and cancellation answer within about a second whatever a
+// beam costs (a mesh scene's beams can be 100 times a bare one's). The
+// first batch is small for the same reason; the image does not depend on
+// the batches (each beam's random numbers are keyed on its index).
+constexpr double kBatchSeconds = 0.5;
+constexpr uint64_t kFirstBatch = uint64_t(1) << 16;
+constexpr uint64_t kSmallestBatch = uint64_t(1) << 10, kLargestBatch = uint64_t(1) << 30;
 uint64_t nextBatch(uint64_t done, double seconds, uint64_t remaining, const RenderOptions& options) {
   if (options.loop.batchBeams) return std::min(options.loop.batchBeams, remaining);
-  uint64_t batch = uint64_t(1) << 22;
-  if (done > 0 && seconds > 0.0) batch = uint64_t(double(done) / seconds);
-  batch = std::clamp<uint64_t>(batch, uint64_t(1) << 20, uint64_t(1) << 30);
+  uint64_t batch = kFirstBatch;
+  if (done > 0 && seconds > 0.0) batch = uint64_t(std::min(double(kLargestBatch), double(done) / seconds * kBatchSeconds));
+  batch = std::clamp(batch, kSmallestBatch, kLargestBatch);
   return std::min(batch, remaining);
 }
 
@@ -119,6 +127,32 @@ void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, const De
         double(needed) / double(1ull << 30), available, double(available) / double(1ull << 30)));
 }
 
+std::vector<std::string> planNotes(const Scene& scene, const CompiledScene& plan) {
+  std::vector<std::string> notes{fmt::format("estimator: {}", estimatorsDescription(plan.device.constants.estimators))};
+  std::vector<const LightSummary*> cannotShine;
+  size_t traced = 0;
+  for (const LightSummary& light : plan.summaries) {
+    if (!light.traced) {
+      notes.push_back(fmt::format("note: {} is never sampled: {}", light.label, light.notTracedBecause));
+      continue;
+    }
+    ++traced;
+    if (light.aimed)
+      notes.push_back(fmt::format("{}: beams aimed at the camera (largest weight {:.3g})", light.label,
+                                  light.largestWeight));
+    if (!light.cannotShineOnCameraBecause.empty()) cannotShine.push_back(&light);
+  }
+  // With objects no light is refused for missing the camera: what it lights
+  // may be seen. Whether anything is cannot be proved before tracing (the
+  // render warns after it when nothing was counted), so this is a note.
+  if (!scene.objects.empty() && traced > 0 && cannotShine.size() == traced)
+    notes.push_back(fmt::format(
+        "note: no light can shine on the camera directly ({}: {}{}); only what the objects scatter can reach it",
+        cannotShine[0]->label, cannotShine[0]->cannotShineOnCameraBecause,
+        traced > 1 ? fmt::format("; and {} more", traced - 1) : std::string()));
+  return notes;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto device = Device::open(options.device, options.loop.log, options.pipelineCache);
   return render(scene, options, *device);
@@ -146,8 +180,10 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
   }
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
-  if (options.loop.log)
+  if (options.loop.log) {
     options.loop.log(fmt::format("device: {}", result.deviceLabel()));
+    for (const std::string& note : planNotes(scene, plan)) options.loop.log(note);
+  }
 
   uint64_t done = 0;
   if (options.loop.resumeFilm) {
@@ -157,6 +193,7 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
   const uint64_t resumed = done;
   auto lastCheckpoint = Clock::now();
   const auto traceStart = Clock::now();
+  if (options.loop.onStart) options.loop.onStart(done, options.beams);
   while (done < options.beams) {
     if (options.loop.cancel && options.loop.cancel->load()) break;
     const uint64_t batch = nextBatch(done - resumed, secondsSince(traceStart), options.beams - done, options);
@@ -179,6 +216,8 @@ RenderResult render(const Scene& scene, CompiledScene compiled, const RenderOpti
   result.traceWallSeconds = secondsSince(traceStart);
   const ResolveParameters parameters = resolveParametersFor(scene, plan, done);
   result.image = tracer->develop(parameters, &result.summary);
+  if (options.loop.log && done > resumed && !(result.summary.largestBeams > 0.0))
+    options.loop.log(fmt::format("warning: no light reached the camera in {} beams: the image is black", done));
   if (options.outputs.downloadFilm || options.outputs.spectral) result.histogram = tracer->download();
   if (options.outputs.spectral && !options.outputs.spectralByCaller) addSpectralChannels(result.image, result.histogram, plan, parameters);
   result.traceDeviceSeconds = tracer->traceDeviceSeconds();

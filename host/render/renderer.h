@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "backend/device.h"
 #include "film/develop.h"
@@ -32,7 +33,7 @@ struct RenderOutputs {
 // How the render loop runs: batches, checkpoints, progress, cancellation,
 // and where it starts from.
 struct RenderLoop {
-  uint64_t batchBeams = 0;           // 0: adapt to about one second per batch
+  uint64_t batchBeams = 0;           // 0: adapt to about half a second per batch
   const std::atomic<bool>* cancel = nullptr;
   double checkpointSeconds = 60.0;   // 0 disables checkpoints
   // Called between batches at most every checkpointSeconds with the image
@@ -41,6 +42,8 @@ struct RenderLoop {
   // With each checkpoint, the exact film of the beams finished so far
   // (for the render state, film/film_state.h).
   std::function<void(const SpectralHistogram& film, uint64_t beamsDone)> onCheckpointFilm;
+  // Once, as tracing starts (beamsDone: those resumed), then after each batch.
+  std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onStart;
   std::function<void(uint64_t beamsDone, uint64_t beamsTotal)> onProgress;
   std::function<void(const std::string&)> log;  // device choice and notices
   // Resume: the film of beams [firstBeam, firstBeam + resumedBeams), already
@@ -87,6 +90,11 @@ struct RenderResult {
   // "name (kind)", as written into EXR headers.
   std::string deviceLabel() const { return deviceName + " (" + deviceKindName(deviceKind) + ")"; }
 };
+
+// What a render says before it traces: the estimator, lights never sampled
+// or aimed (named by their "name" when they have one), and a warning when,
+// with objects, no light can shine on the camera directly.
+std::vector<std::string> planNotes(const Scene& scene, const CompiledScene& plan);
 
 RenderResult render(const Scene& scene, const RenderOptions& options);
 // The same render on a device opened by the caller (options.device unused).
