@@ -46,6 +46,10 @@ struct Scene {
   bool outputSpectral = false;
   std::filesystem::path sourcePath;  // empty for scenes built in code
   std::string sourceSha256;          // hex digest of the file's bytes
+  // The fields overridden in the file's JSON before it was parsed (render
+  // --set, a batch job's "set" and sweep values), as overridesText writes
+  // them; empty when none.
+  std::string overrides;
   // Hex digest of the files the scene names (CSV spectra and reflectances,
   // OBJ meshes; referencedFilesSha256), empty when it names none.
   std::string referencedFilesSha256;

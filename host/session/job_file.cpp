@@ -11,6 +11,7 @@
 
 #include "json/input_file.h"
 #include "json/json_fields.h"
+#include "scene/scene_override.h"
 
 namespace spectrace {
 namespace {
@@ -42,26 +43,14 @@ Json::json_pointer pointerOf(const jf::Source& c, const std::string& field, cons
   }
 }
 
-// Sets `pointer` in the scene: its parent must exist (an object, or an
-// array holding that index), so a typo cannot add a stray branch.
+// Sets `pointer` in the scene (applySceneOverride), failing at `field`.
 void applyOverride(const jf::Source& c, const std::string& field, Json& scene, const std::string& text,
                    const Json& value, const fs::path& scenePath) {
-  const auto pointer = pointerOf(c, field, text);
-  if (pointer.empty()) c.fail(field, "cannot replace the whole scene (the pointer is empty)");
-  const auto parent = pointer.parent_pointer();
-  if (!scene.contains(parent))
-    c.fail(field, fmt::format("unknown pointer {}: {} has no {}", text, scenePath.string(),
-                              parent.empty() ? std::string("top level") : parent.to_string()));
-  Json& holder = scene[parent];
-  if (holder.is_array()) {
-    if (!scene.contains(pointer))
-      c.fail(field, fmt::format("unknown pointer {}: {} has no {} (the array has {} elements)", text,
-                                scenePath.string(), text, holder.size()));
-  } else if (!holder.is_object()) {
-    c.fail(field, fmt::format("unknown pointer {}: {} is {}, not an object or array", text, parent.to_string(),
-                              jf::describe(holder)));
+  try {
+    applySceneOverride(scene, SceneOverride{text, value}, scenePath);
+  } catch (const SceneOverrideError& e) {
+    c.fail(field, e.what());
   }
-  scene[pointer] = value;
 }
 
 // Output or state pattern (`field`: "/output", "/state"): {index} and
@@ -246,6 +235,14 @@ class SceneCache {
   uint64_t bytes_ = 0, reads_ = 0;
 };
 
+// The line's "set" overrides, in the order applied (a JSON object's: by key).
+std::vector<SceneOverride> setOverridesOf(const LineSpec& spec) {
+  std::vector<SceneOverride> overrides;
+  if (const Json* set = jf::find(spec.job, "set"))
+    for (const auto& [key, value] : set->items()) overrides.push_back({key, value});
+  return overrides;
+}
+
 // The line's scene with its "set" overrides applied; `fileSha256`: the
 // scene file's digest.
 std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes, std::string* fileSha256 = nullptr) {
@@ -255,7 +252,8 @@ std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes, std
   if (!set) return scene;
   if (!set->is_object()) c.fail("/set", fmt::format("must be an object of JSON pointer: value (got {})", jf::describe(*set)));
   auto copy = std::make_shared<Json>(*scene);
-  for (const auto& [key, value] : set->items()) applyOverride(c, jf::child("/set", key), *copy, key, value, spec.scenePath);
+  for (const SceneOverride& o : setOverridesOf(spec))
+    applyOverride(c, jf::child("/set", o.pointer), *copy, o.pointer, o.value, spec.scenePath);
   return copy;
 }
 
@@ -442,19 +440,23 @@ void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& e
     digits[k] = rest % sweep[k].second.size();
     rest /= sweep[k].second.size();
   }
-  for (size_t k = 0; k < sweep.size(); ++k)
-    applyOverride(jc, jf::child("/sweep", sweep[k].first), scene, sweep[k].first, sweep[k].second[digits[k]],
+  std::vector<SceneOverride> applied = setOverridesOf(spec);  // line.base has them
+  for (size_t k = 0; k < sweep.size(); ++k) {
+    applied.push_back({sweep[k].first, sweep[k].second[digits[k]]});
+    applyOverride(jc, jf::child("/sweep", sweep[k].first), scene, sweep[k].first, applied.back().value,
                   spec.scenePath);
+  }
   entry.output = claimOutput(jc, line, index, scene);
   const fs::path state = spec.statePattern ? claimState(jc, line, index, scene) : fs::path();
   RenderJob job;
   try {
     job.scene = parseSceneJson(scene, spec.scenePath);
   } catch (const SceneError& e) {
-    jc.fail(sweep.empty() && !jf::find(spec.job, "set") ? "/scene" : "/scene (with the job's overrides)", e.what());
+    jc.fail(applied.empty() ? "/scene" : "/scene (with the job's overrides)", e.what());
   }
   // The scene file's digest, as render's: a state names the file to develop it from.
-  if (sweep.empty() && !jf::find(spec.job, "set")) job.scene.sourceSha256 = line.fileSha256;
+  if (applied.empty()) job.scene.sourceSha256 = line.fileSha256;
+  else job.scene.overrides = overridesText(applied);
   job.output = entry.output;
   job.state = state;
   job.stateRole = "state";

@@ -89,6 +89,10 @@ TEST_F(JobFileTest, SweepIsTheProductWithTheFirstKeyOutermostAndNamesOutputs) {
     EXPECT_EQ(job.seedValue(), 3u);
     EXPECT_DOUBLE_EQ(job.scene.lights[0].powerW, powers[i]);
     EXPECT_DOUBLE_EQ(job.scene.camera.position.z, -1.0);
+    // What the EXR header records: "set", then the sweep's values in its order.
+    EXPECT_EQ(job.scene.overrides,
+              fmt::format(R"({{"/camera/position":[0,0,-1],"/lights/0/spd/blackbody_k":{},"/lights/0/power_w":{}}})",
+                          i < 3 ? 2700 : 4000, powers[i]));
   }
 }
 
@@ -102,6 +106,7 @@ TEST_F(JobFileTest, ABadLineIsAnErrorNamingFileLineAndFieldAndTheOthersStand) {
   ASSERT_EQ(entries.size(), 5u);
   ASSERT_TRUE(entries[0].job) << entries[0].error;
   EXPECT_EQ(entries[0].job->beamCount(), 1000u);  // the scene's
+  EXPECT_EQ(entries[0].job->scene.overrides, "");
   EXPECT_FALSE(entries[1].job);
   EXPECT_NE(entries[1].error.find("jobs.jsonl:2: /set/~1lights~11~1power_w: unknown pointer /lights/1/power_w"),
             std::string::npos) << entries[1].error;

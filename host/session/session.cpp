@@ -30,6 +30,8 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool
   meta.strings["spectrace:device"] = device;
   meta.strings["spectrace:scene_file"] = scene.sourcePath.string();
   meta.strings["spectrace:scene_sha256"] = scene.sourceSha256;
+  // The scene rendered is the file changed by these: it is in no file.
+  if (!scene.overrides.empty()) meta.strings["spectrace:overrides"] = scene.overrides;
   meta.strings["spectrace:observer"] = scene.observer;
   meta.strings["spectrace:units"] =
       "R,G,B: linear sRGB (Rec. 709, D65) of XYZ; XYZ: CIE XYZ with Y in lux; irradiance.E: W/m^2 over all bins; "
