@@ -19,7 +19,7 @@ endforeach()
 foreach(case "render|--beams COUNT " "render|--seed INT " "render|--first-beam INT=0 "
              "render|--threads COUNT " "render|--checkpoint-seconds SECONDS=60"
              "render|--device DEVICE:{auto,gpu,cpu}=auto" "render|--cpu-code CODE:{auto,baseline,x86-64-v3}=auto"
-             "render|--no-png  " "render|--state PATH " "render|scene PATH ... REQUIRED"
+             "render|--no-png  " "render|--state PATH " "render|scene PATH ... REQUIRED" "render|--set POINTER=JSON ... "
              "merge|--no-png  " "merge|-o,--output PATH REQUIRED" "batch|--no-pipeline-cache  "
              "batch|--out-dir DIR " "bench|--beams COUNT=33554432 " "bench|--profile-beams COUNT=8388608")
   string(FIND "${case}" "|" bar)

@@ -14,8 +14,10 @@
 #include "backend/device.h"
 #include "compile/estimators.h"
 #include "io/image.h"
+#include "json/json_fields.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_override.h"
 #include "session/session.h"
 
 namespace spectrace::cli {
@@ -75,6 +77,88 @@ void applyStateOptions(const RenderCommand& command, RenderJob& job) {
   }
 }
 
+// One --set POINTER=JSON. Throws UsageError naming the option.
+SceneOverride parseSetOption(const std::string& text) {
+  const size_t equals = text.find('=');
+  if (equals == std::string::npos)
+    throw UsageError(fmt::format("--set {}: no '=' (give POINTER=JSON, e.g. --set /lights/0/power_w=2)", text));
+  SceneOverride override{text.substr(0, equals), {}};
+  try {
+    sceneOverridePointer(override.pointer);
+  } catch (const SceneOverrideError& e) {
+    throw UsageError(fmt::format("--set {}: {}", text, e.what()));
+  }
+  // The scene's own JSON reader: a key repeated in an object is refused,
+  // and so is nesting past its depth limit.
+  json_fields::Source source;
+  source.file = fmt::format("--set {}: the value", text);
+  source.note = " (the value after '=' is JSON: a string needs its quotes, e.g. --set '/observer=\"CIE1964_10\"')";
+  source.raise = [](const std::string& message) { throw UsageError(message); };
+  override.value = json_fields::parseJson(source, text.substr(equals + 1));
+  return override;
+}
+
+// Every --set, in order; a pointer given twice is refused, as a job's "set"
+// refuses a repeated key.
+std::vector<SceneOverride> overridesOf(const RenderCommand& command) {
+  std::vector<SceneOverride> overrides;
+  for (size_t i = 0; i < command.overrides.size(); ++i) {
+    overrides.push_back(parseSetOption(command.overrides[i]));
+    for (size_t j = 0; j < i; ++j)
+      if (overrides[j].pointer == overrides[i].pointer)
+        throw UsageError(fmt::format("--set {}: {} is already set by --set {} (give each pointer once)",
+                                     command.overrides[i], overrides[i].pointer, command.overrides[j]));
+  }
+  return overrides;
+}
+
+// "--set A --set B", for messages.
+std::string setOptionsText(const RenderCommand& command) {
+  std::string text;
+  for (const std::string& given : command.overrides) text += (text.empty() ? "--set " : " --set ") + given;
+  return text;
+}
+
+// The scene file at `path` with the --set overrides applied to its JSON,
+// then parsed and validated like any scene (loadScene without overrides).
+Scene sceneOf(const std::filesystem::path& path, const RenderCommand& command,
+              const std::vector<SceneOverride>& overrides) {
+  if (overrides.empty()) return loadScene(path);
+  nlohmann::json json = readSceneJson(path);
+  for (size_t i = 0; i < overrides.size(); ++i) {
+    try {
+      applySceneOverride(json, overrides[i], path);
+    } catch (const SceneOverrideError& e) {
+      throw UsageError(fmt::format("--set {}: {}", command.overrides[i], e.what()));
+    }
+  }
+  try {
+    Scene scene = parseSceneJson(json, path);
+    scene.overrides = overridesText(overrides);
+    return scene;
+  } catch (const SceneError& e) {
+    throw UsageError(fmt::format("{}: the scene with {} is invalid: {}", setOptionsText(command),
+                                 overrides.size() == 1 ? "this override" : "these overrides", e.what()));
+  }
+}
+
+// --set with a state, which merge and --resume develop from its scene file
+// (that must hash as it did): the scene --set makes is in no file. A batch
+// job refuses "state" with "set" for the same reason. Refused here alone,
+// before anything is written, so that it is lifted in one place.
+void refuseSetWithStates(const RenderCommand& command) {
+  if (command.overrides.empty()) return;
+  const std::pair<bool, const char*> stateOptions[] = {
+      {command.state.has_value(), "--state"}, {command.resume.has_value(), "--resume"},
+      {command.shard.has_value(), "--shard"}, {command.mpi, "--mpi"}};
+  for (const auto& [given, option] : stateOptions)
+    if (given)
+      throw UsageError(fmt::format("{} cannot be given with {}: states, shards and MPI ranks' films are joined by "
+                                   "their scene file (merge and --resume read it again), and the scene --set makes "
+                                   "is in no file",
+                                   setOptionsText(command), option));
+}
+
 }  // namespace
 
 int runMerge(const MergeCommand& command) {
@@ -111,10 +195,11 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
                                  command.output->string(), command.scenes.size()));
   if (several && (command.state || command.resume || command.shard))
     throw UsageError(fmt::format("--state, --resume and --shard take one scene (got {})", command.scenes.size()));
+  const std::vector<SceneOverride> overrides = overridesOf(command);
   std::vector<RenderJob> jobs;
   for (const auto& path : command.scenes) {
     RenderJob job;
-    job.scene = loadScene(path);
+    job.scene = sceneOf(path, command, overrides);
     if (command.wavelengthsPerBeam) job.scene.render.wavelengthsPerBeam = *command.wavelengthsPerBeam;
     if (!command.output) job.output = defaultOutput(path);
     else if (several || namesFolder(*command.output)) job.output = *command.output / (path.stem().string() + ".exr");
@@ -153,6 +238,7 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
 }
 
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
+  refuseSetWithStates(command);
   if (command.mpi) return runMpiRender(command, cancel);
   const bool several = command.scenes.size() > 1;
   std::vector<RenderJob> jobs = renderJobsOf(command, cancel, true);

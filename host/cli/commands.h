@@ -42,6 +42,9 @@ struct RenderCommand {
   std::optional<std::filesystem::path> resume;  // go on from this state (and keep writing it)
   std::optional<std::string> shard;             // "I/K": beams of the I-th (0-based) of K equal parts
   bool mpi = false;  // split the beams over the MPI ranks; rank 0 writes (cli/mpi_render.cpp)
+  // --set POINTER=JSON, as given, in order: fields of every scene file
+  // replaced before it is parsed (as a batch job's "set").
+  std::vector<std::string> overrides;
 };
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel);
 // The jobs of a render command, checked (throws UsageError and the scene's

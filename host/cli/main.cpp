@@ -132,6 +132,12 @@ int main(int argc, char** argv) {
       ->type_name("PATH");
   renderCmd->add_option("--shard", render.shard, "I/K: render the I-th (0-based) of K equal beam ranges")
       ->type_name("I/K");
+  // One value per --set, so that a scene path after it is not taken for another.
+  renderCmd->add_option("--set", render.overrides,
+                        "Replace a field of the scene file before it is checked: a JSON pointer, '=', a JSON value "
+                        "(e.g. /lights/0/spd/blackbody_k=3000)")
+      ->type_name("POINTER=JSON")
+      ->allow_extra_args(false);
   renderCmd->add_flag("--mpi", render.mpi,
                       "Under mpirun: split the beams over the MPI ranks, sum their films exactly on rank 0, "
                       "which writes the image (docs/scaling.md)");
