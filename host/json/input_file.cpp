@@ -72,7 +72,37 @@ void InputFile::readAt(uint64_t offset, void* out, size_t bytes) const {
                            offset + bytes));
 }
 
+namespace {
+thread_local const BundledInputFiles* bundledOnThisThread = nullptr;
+}  // namespace
+
+BundledInputFiles::BundledInputFiles(const InputFileBundle& files, std::string origin)
+    : files_(files), origin_(std::move(origin)) {
+  if (bundledOnThisThread) throw std::logic_error("BundledInputFiles nested");
+  bundledOnThisThread = this;
+}
+
+BundledInputFiles::~BundledInputFiles() { bundledOnThisThread = nullptr; }
+
+bool BundledInputFiles::active() { return bundledOnThisThread != nullptr; }
+
+std::string BundledInputFiles::read(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
+  const BundledInputFiles& self = *bundledOnThisThread;
+  const auto found = self.files_.find(file.string());
+  if (found == self.files_.end()) {
+    const std::string why = fmt::format("{} not in {}", what, self.origin_);
+    throw InputFileError(fmt::format("{}: {}", file.string(), why), why, true);
+  }
+  if (found->second.size() > maxBytes) {
+    const std::string why = fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what,
+                                        found->second.size(), maxBytes, maxBytes >> 20);
+    throw InputFileError(fmt::format("{}: {}", file.string(), why), why);
+  }
+  return found->second;
+}
+
 std::string readInputFile(const std::filesystem::path& file, const char* what, uint64_t maxBytes) {
+  if (BundledInputFiles::active()) return BundledInputFiles::read(file, what, maxBytes);
   const InputFile in(file, what);
   if (in.size() > maxBytes)
     throw in.fail(fmt::format("the {} is {} bytes; at most {} bytes ({} MiB) are read", what, in.size(), maxBytes,

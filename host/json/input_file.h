@@ -5,6 +5,7 @@
 // before the bytes are read. docs/reliability.md "Input limits".
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -53,7 +54,35 @@ class InputFile {
 
 // The whole file, when it is a regular file of at most `maxBytes` bytes.
 // `what` names the kind of file in messages ("scene file", "SPD file").
+// While a BundledInputFiles lives on this thread, from its files instead.
 std::string readInputFile(const std::filesystem::path& file, const char* what,
                           uint64_t maxBytes = kMaxInputFileBytes);
+
+// Files by path (as the scene loader resolved it, not made absolute).
+using InputFileBundle = std::map<std::string, std::string>;
+
+// While one lives, readInputFile on this thread serves `files` in place of
+// the disk, and refuses any path not among them ("<path>: not in <origin>"):
+// a scene developed from a render state reads its CSV spectra and meshes
+// from the state, and the parsers that read them sit several calls deep.
+// Scoped, so no read outside it is redirected; never nested.
+class BundledInputFiles {
+ public:
+  BundledInputFiles(const InputFileBundle& files, std::string origin);
+  ~BundledInputFiles();
+  BundledInputFiles(const BundledInputFiles&) = delete;
+  BundledInputFiles& operator=(const BundledInputFiles&) = delete;
+
+  // Whether one is in effect on this thread (callers that look at the disk
+  // before reading skip that look).
+  static bool active();
+  // The bytes of `file`, or an InputFileError naming it when it is not
+  // bundled or breaks `maxBytes`.
+  static std::string read(const std::filesystem::path& file, const char* what, uint64_t maxBytes);
+
+ private:
+  const InputFileBundle& files_;
+  std::string origin_;
+};
 
 }  // namespace spectrace

@@ -50,6 +50,9 @@ struct Scene {
   // --set, a batch job's "set" and sweep values), as overridesText writes
   // them; empty when none.
   std::string overrides;
+  // The bytes sourceSha256 is the digest of (the file's, or the compact dump
+  // of a scene built from JSON): a render state carries them.
+  std::string sourceText;
   // Hex digest of the files the scene names (CSV spectra and reflectances,
   // OBJ meshes; referencedFilesSha256), empty when it names none.
   std::string referencedFilesSha256;
@@ -75,14 +78,16 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& file)
 // The same from a JSON value already read (e.g. a scene file with fields
 // overridden by a batch job): the same schema and validator; `file` names
 // the scene in messages and is where relative CSV paths resolve.
-// sourceSha256 is the digest of the value's compact dump.
+// sourceSha256 is the digest of the value's compact dump (its sourceText).
 Scene parseSceneJson(const nlohmann::json& root, const std::filesystem::path& file);
 // A scene file's bytes, and its JSON (comments tolerated, repeated keys
 // refused); errors are SceneError "<file>: <what>", and for a missing file
 // "<file>: scene file not found (looked for <absolute path>)".
 std::string readSceneText(const std::filesystem::path& file);
-// With `sha256`, also the file bytes' digest (as loadScene's sourceSha256).
-nlohmann::json readSceneJson(const std::filesystem::path& file, std::string* sha256 = nullptr);
+// With `sha256`, also the file bytes' digest (as loadScene's sourceSha256);
+// with `text`, the bytes themselves (as loadScene's sourceText).
+nlohmann::json readSceneJson(const std::filesystem::path& file, std::string* sha256 = nullptr,
+                             std::string* text = nullptr);
 // Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
 std::string sceneSha256Hex(std::string_view bytes);
 // The digest of the files `scene` names, in scene order (each light's CSV
@@ -91,5 +96,9 @@ std::string sceneSha256Hex(std::string_view bytes);
 // fingerprint holds it, so merges, resumes and MPI ranks never join films
 // traced from other meshes or spectra under one scene file.
 std::string referencedFilesSha256(const Scene& scene);
+// Those files, in that order (a file named twice is listed twice), by the
+// paths the loader resolved (relative to the working folder when the scene
+// file's path was relative).
+std::vector<std::filesystem::path> referencedFiles(const Scene& scene);
 
 }  // namespace spectrace

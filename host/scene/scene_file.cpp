@@ -207,7 +207,7 @@ bool parseOutputSpectral(const jf::Source& c, const Json& v, const std::string& 
 
 namespace {
 
-Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
+Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) {
   const jf::Source c = sourceFor(file);
   static const Keys kTop = {"spectrum", "observer", "camera", "lights", "objects", "render", "output"};
   if (!root.is_object()) c.fail("", fmt::format("the top level must be a JSON object (got {})", describe(root)));
@@ -248,7 +248,8 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
 
   if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
   if (auto* x = find(root, "output")) scene.outputSpectral = parseOutputSpectral(c, *x, "/output");
-  scene.sourceSha256 = std::move(sha256);
+  scene.sourceSha256 = sceneSha256Hex(sourceText);
+  scene.sourceText = std::move(sourceText);
   validateScene(scene, checker);
   scene.referencedFilesSha256 = referencedFilesSha256(scene);
   return scene;
@@ -258,10 +259,10 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sha256) {
 
 Scene parseScene(const std::string& jsonText, const fs::path& file) {
   const Json root = jf::parseJson(sourceFor(file), jsonText);
-  return parseRoot(root, file, sceneSha256Hex(jsonText));
+  return parseRoot(root, file, jsonText);
 }
 
-std::string referencedFilesSha256(const Scene& scene) {
+std::vector<fs::path> referencedFiles(const Scene& scene) {
   std::vector<fs::path> files;
   for (const Light& light : scene.lights) files.push_back(light.spdFile);
   for (const SceneObject& object : scene.objects) {
@@ -269,6 +270,11 @@ std::string referencedFilesSha256(const Scene& scene) {
     files.push_back(object.material.reflectanceFile);
   }
   std::erase_if(files, [](const fs::path& f) { return f.empty(); });
+  return files;
+}
+
+std::string referencedFilesSha256(const Scene& scene) {
+  const std::vector<fs::path> files = referencedFiles(scene);
   if (files.empty()) return "";
   std::string digests;
   for (const fs::path& f : files) {
@@ -282,14 +288,16 @@ std::string referencedFilesSha256(const Scene& scene) {
 }
 
 Scene parseSceneJson(const nlohmann::json& root, const fs::path& file) {
-  return parseRoot(root, file, sceneSha256Hex(root.dump()));
+  return parseRoot(root, file, root.dump());
 }
 
-nlohmann::json readSceneJson(const fs::path& file, std::string* sha256) {
+nlohmann::json readSceneJson(const fs::path& file, std::string* sha256, std::string* text) {
   const jf::Source c = sourceFor(file);
-  const std::string text = readSceneText(file);
-  if (sha256) *sha256 = sceneSha256Hex(text);
-  return jf::parseJson(c, text);
+  std::string bytes = readSceneText(file);
+  if (sha256) *sha256 = sceneSha256Hex(bytes);
+  nlohmann::json root = jf::parseJson(c, bytes);
+  if (text) *text = std::move(bytes);
+  return root;
 }
 
 Scene loadScene(const fs::path& file) { return parseScene(readSceneText(file), file); }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera/pinhole_camera.h"
+#include "json/input_file.h"
 
 namespace spectrace {
 namespace {
@@ -327,6 +328,44 @@ TEST_F(SceneTest, CsvPathResolvesAgainstTheSceneFolderNotTheCwd) {
   // An absolute CSV path is used as is.
   j["lights"][2]["spd"] = {{"csv", (dir_ / "lamp.csv").string()}};
   EXPECT_EQ(load(j, "sub/abs.json").lights[2].spd.lambdaNm.size(), 5u);
+}
+
+// A scene parsed under BundledInputFiles (as a render state develops it)
+// reads the files it names from the bundle and never the disk, with the
+// digests of a load from disk; a file the bundle lacks is refused by name.
+TEST_F(SceneTest, BundledInputFilesServeTheCsvInPlaceOfTheDisk) {
+  const std::string text = exampleScene().dump(2);
+  const fs::path scenePath = write("scene.json", text);
+  const Scene fromDisk = loadScene(scenePath);
+  InputFileBundle files;
+  for (const fs::path& file : referencedFiles(fromDisk)) files[file.string()] = readInputFile(file, "file");
+  ASSERT_EQ(files.count((dir_ / "lamp.csv").string()), 1u);
+  fs::remove(dir_ / "lamp.csv");
+  Scene bundled;
+  {
+    const BundledInputFiles served(files, "the test's bundle");
+    bundled = parseScene(text, scenePath);
+  }
+  EXPECT_EQ(bundled.sourceText, text);
+  EXPECT_EQ(bundled.sourceSha256, fromDisk.sourceSha256);
+  EXPECT_EQ(bundled.referencedFilesSha256, fromDisk.referencedFilesSha256);
+  EXPECT_EQ(bundled.lights[2].spd.lambdaNm, fromDisk.lights[2].spd.lambdaNm);
+  {
+    files[(dir_ / "lamp.csv").string()] = "wavelength_nm,value\n400,1\n700,2\n";
+    const BundledInputFiles served(files, "the test's bundle");
+    EXPECT_EQ(parseScene(text, scenePath).lights[2].spd.lambdaNm.size(), 2u) << "the bundle's bytes, not the disk's";
+  }
+  write("lamp.csv", kLampCsv);  // on disk again, but not in the bundle
+  const InputFileBundle none;
+  const BundledInputFiles served(none, "the test's bundle");
+  try {
+    parseScene(text, scenePath);
+    ADD_FAILURE() << "a CSV missing from the bundle was read";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find((dir_ / "lamp.csv").string() + ": SPD file not in the test's bundle"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(SceneTest, Sha256OfKnownStrings) {

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "json/input_file.h"
 #include "scene/scene_limits.h"
 
 namespace spectrace {
@@ -106,12 +107,14 @@ ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p,
       fs::path path(rel);
       fs::path resolved = path.is_absolute() ? path : (c.dir / path).lexically_normal();
       std::error_code ec;
-      if (!fs::exists(resolved, ec))
+      // A scene developed from a state reads its CSVs from the state, not the disk.
+      const bool onDisk = !BundledInputFiles::active();
+      if (onDisk && !fs::exists(resolved, ec))
         c.fail(cp, fmt::format("SPD file not found: {}{}", jsonQuoted(rel),
                                path.is_absolute() ? std::string()
                                                   : fmt::format(" (looked for {}, relative to the scene file's folder)",
                                                                 jsonQuoted(fs::absolute(resolved, ec).string()))));
-      if (!fs::is_regular_file(resolved, ec)) c.fail(cp, fmt::format("{} is not a regular file", jsonQuoted(resolved.string())));
+      if (onDisk && !fs::is_regular_file(resolved, ec)) c.fail(cp, fmt::format("{} is not a regular file", jsonQuoted(resolved.string())));
       out.spd = callSpd(c, cp, [&] { return loadCsvSpd(resolved, column); });
       out.label = "csv " + rel + (column ? " column " + *column : "");
       out.file = resolved;

@@ -198,12 +198,15 @@ void checkJobCount(const LineSpec& spec, uint64_t before, uint64_t maxJobs) {
 // Scene files by path, each read once and held (up to kSceneCacheBytes).
 class SceneCache {
  public:
-  // The file's JSON, and with `sha256` the digest of its bytes.
-  std::shared_ptr<const Json> get(const jf::Source& c, const fs::path& path, std::string* sha256 = nullptr) {
+  // The file's JSON, and with `sha256` and `text` the digest of its bytes
+  // and the bytes.
+  std::shared_ptr<const Json> get(const jf::Source& c, const fs::path& path, std::string* sha256 = nullptr,
+                                  std::shared_ptr<const std::string>* text = nullptr) {
     auto it = held_.find(path.string());
     if (it == held_.end()) it = read(path);
     if (!it->second.json) c.fail("/scene", it->second.error);
     if (sha256) *sha256 = it->second.sha256;
+    if (text) *text = it->second.text;
     return it->second.json;
   }
   uint64_t reads() const { return reads_; }
@@ -212,19 +215,23 @@ class SceneCache {
   struct Held {
     std::shared_ptr<const Json> json;
     std::string sha256;  // of the file's bytes
+    std::shared_ptr<const std::string> text;  // the bytes: a job's state carries them
     std::string error;   // when json is null
   };
   std::unordered_map<std::string, Held>::iterator read(const fs::path& path) {
     std::error_code ec;
     const uint64_t size = fs::file_size(path, ec);
-    if (ec == std::error_code() && bytes_ + size > kSceneCacheBytes) {
+    // Held twice: as JSON (about its size) and as the file's bytes.
+    if (ec == std::error_code() && bytes_ + 2 * size > kSceneCacheBytes) {
       held_.clear();
       bytes_ = 0;
     }
     Held held;
     try {
-      held.json = std::make_shared<const Json>(readSceneJson(path, &held.sha256));
-      if (ec == std::error_code()) bytes_ += size;
+      std::string text;
+      held.json = std::make_shared<const Json>(readSceneJson(path, &held.sha256, &text));
+      held.text = std::make_shared<const std::string>(std::move(text));
+      if (ec == std::error_code()) bytes_ += 2 * size;
     } catch (const SceneError& e) {
       held.error = e.what();
     }
@@ -243,11 +250,12 @@ std::vector<SceneOverride> setOverridesOf(const LineSpec& spec) {
   return overrides;
 }
 
-// The line's scene with its "set" overrides applied; `fileSha256`: the
-// scene file's digest.
-std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes, std::string* fileSha256 = nullptr) {
+// The line's scene with its "set" overrides applied; `fileSha256` and
+// `fileText`: the scene file's digest and bytes.
+std::shared_ptr<const Json> baseOf(const LineSpec& spec, SceneCache& scenes, std::string* fileSha256 = nullptr,
+                                   std::shared_ptr<const std::string>* fileText = nullptr) {
   const jf::Source& c = spec.c;
-  std::shared_ptr<const Json> scene = scenes.get(c, spec.scenePath, fileSha256);
+  std::shared_ptr<const Json> scene = scenes.get(c, spec.scenePath, fileSha256, fileText);
   const Json* set = jf::find(spec.job, "set");
   if (!set) return scene;
   if (!set->is_object()) c.fail("/set", fmt::format("must be an object of JSON pointer: value (got {})", jf::describe(*set)));
@@ -285,6 +293,7 @@ struct JobReader::State {
     std::optional<LineSpec> spec;        // none for a bad line
     std::shared_ptr<const Json> base;    // the scene with "set" applied
     std::string fileSha256;              // the scene file's digest
+    std::shared_ptr<const std::string> fileText;  // and its bytes
     std::string error;                   // for a bad line
     uint64_t count = 1, index = 0;
     bool swept = false;
@@ -387,7 +396,7 @@ JobReader::State::Current JobReader::State::open(size_t index) {
   try {
     line.spec = parseLine(file, planned.number, bytes.substr(planned.begin, planned.size));
     line.swept = !line.spec->sweep.empty();
-    line.base = baseOf(*line.spec, scenes, &line.fileSha256);
+    line.base = baseOf(*line.spec, scenes, &line.fileSha256, &line.fileText);
   } catch (const JobError& e) {  // a scene that changed since the first pass
     line.error = e.what();
   } catch (const nlohmann::json::exception& e) {
@@ -454,9 +463,13 @@ void JobReader::State::buildJob(const Current& line, uint64_t index, JobEntry& e
   } catch (const SceneError& e) {
     jc.fail(applied.empty() ? "/scene" : "/scene (with the job's overrides)", e.what());
   }
-  // The scene file's digest, as render's: a state names the file to develop it from.
-  if (applied.empty()) job.scene.sourceSha256 = line.fileSha256;
-  else job.scene.overrides = overridesText(applied);
+  // The scene file's digest and bytes, as render's: a state carries them.
+  if (applied.empty()) {
+    job.scene.sourceSha256 = line.fileSha256;
+    job.scene.sourceText = *line.fileText;
+  } else {
+    job.scene.overrides = overridesText(applied);
+  }
   job.output = entry.output;
   job.state = state;
   job.stateRole = "state";

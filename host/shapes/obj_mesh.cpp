@@ -160,7 +160,8 @@ std::string readObjFile(const jf::Source& c, const std::string& ptr, const fs::p
   // "No such file or directory" with where it was looked for, as for CSV
   // spectra; readInputFile's checks (a regular file, the size) follow.
   struct stat st{};
-  if (::stat(path.c_str(), &st) != 0) {
+  // A scene developed from a state reads its meshes from the state, not the disk.
+  if (!BundledInputFiles::active() && ::stat(path.c_str(), &st) != 0) {
     const int err = errno;
     std::error_code ec;
     const std::string where =
