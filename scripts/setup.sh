@@ -13,6 +13,7 @@ packages=(
   gnuplot-nox                                                    # benchmark plots
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
   libtinyobjloader-dev                                           # OBJ meshes of scene objects
+  libzstd-dev                                                    # compressed render states
 )
 # SPECTRACE_VALIDATION=1 and validation_test need the Khronos layer.
 packages+=(vulkan-validationlayers)

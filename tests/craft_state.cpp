@@ -1,9 +1,11 @@
-// craft_state IN OUT [ranges=FIRST:COUNT,...] [counted_beams=N] [counts_wrapping=OTHER]
+// craft_state IN OUT [ranges=FIRST:COUNT,...] [counted_beams=N] [counts_wrapping=OTHER] [drop_bundle]
 // Writes OUT as the render state IN with the given header fields, signed by
 // writeFilmState, so the CLI tests can hand spectrace states that pass the
 // checksum but are wrong in one field. counts_wrapping: each count c > 0 of
 // the state OTHER becomes 2^64 - c here, and every other count 0, so that a
 // merge with OTHER sums every count to exactly 2^64, which wraps to 0.
+// drop_bundle: the state without its scene bundle, as states were before
+// they carried one (it develops from the scene file it names).
 #include <charconv>
 #include <cstdio>
 #include <string>
@@ -48,6 +50,7 @@ void apply(FilmState& state, std::string_view edit) {
   if (key == "ranges") state.ranges = rangesOf(value);
   else if (key == "counted_beams") state.histogram.countedBeams = numberOf(value);
   else if (key == "counts_wrapping") state.histogram.counts() = wrapping(state, readFilmState(std::string(value)));
+  else if (key == "drop_bundle") state.bundle.reset();
   else throw std::invalid_argument("unknown edit: " + std::string(edit));
 }
 
@@ -56,7 +59,8 @@ void apply(FilmState& state, std::string_view edit) {
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
-                 "usage: craft_state IN OUT [ranges=FIRST:COUNT,...] [counted_beams=N] [counts_wrapping=OTHER]\n");
+                 "usage: craft_state IN OUT [ranges=FIRST:COUNT,...] [counted_beams=N] [counts_wrapping=OTHER] "
+                 "[drop_bundle]\n");
     return 2;
   }
   try {

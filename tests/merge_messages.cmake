@@ -1,8 +1,9 @@
 # What merge prints: the count of states and beams it merged, in words that
 # agree with the numbers ("1 state", "2 states"); and when the scene a state
-# was rendered from is gone, its path as the render was given it and the
-# absolute path looked for.
-#   -DSPECTRACE=path  -DSCENE=scene.json  -DDIR=scratch folder
+# without its bundle was rendered from is gone, its path as the render was
+# given it and the absolute path looked for (a state with its bundle needs
+# no scene file).
+#   -DSPECTRACE=path  -DCRAFT=craft_state  -DSCENE=scene.json  -DDIR=scratch folder
 include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
@@ -27,7 +28,9 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "render gone.json: exit code ${rc}:\n${out}${err}")
 endif()
 file(REMOVE "${DIR}/gone.json")
+run("${SPECTRACE}" merge "${DIR}/gone.state" ${quick} -q -o "${DIR}/gone_merged.exr")
+run("${CRAFT}" "${DIR}/gone.state" "${DIR}/gone_unbundled.state" drop_bundle)
 expect_refused(scene_gone
   "spectrace: error: cannot read the scene the state was rendered from: gone.json: scene file not found \\(looked for /[^)]*/gone.json\\)"
-  "${SPECTRACE}" merge "${DIR}/gone.state" ${quick} -o "${DIR}/gone_merged.exr")
+  "${SPECTRACE}" merge "${DIR}/gone_unbundled.state" ${quick} -o "${DIR}/gone_merged.exr")
 message(STATUS "merge counted its states and beams in words that agree, and named the scene it could not read")

@@ -166,7 +166,8 @@ int runMerge(const MergeCommand& command) {
     // Every state read and checked, and every sum, before any output is touched.
     FilmState merged = mergeStateFiles(command.states);
     // The same output checks as render, before the film is developed: the
-    // states and the scene they name are inputs, never overwritten.
+    // states and the scene they name are inputs, never overwritten (a scene
+    // that is gone, as a bundled state allows, is simply not among them).
     std::vector<std::filesystem::path> inputs(command.states.begin(), command.states.end());
     inputs.emplace_back(merged.fingerprint.sceneFile);
     checkOutputFiles(outputFilesOf(command.output, command.png, command.state.value_or(std::filesystem::path())),
@@ -175,6 +176,8 @@ int runMerge(const MergeCommand& command) {
     if (!command.quiet) log = [](const std::string& line) { std::fprintf(stderr, "spectrace: %s\n", line.c_str()); };
     const Session session(parseDeviceChoice(command.device), log);
     const RenderResult result = session.develop(merged, command.output, command.spectral, command.png);
+    // The merged beams' scale, from the scene as develop compiled it.
+    merged.irradiancePerCount = stateIrradiancePerCount(result.plan.irradianceScale(), merged.beams());
     if (command.state) writeFilmState(*command.state, merged);
     if (!command.quiet)
       std::fprintf(stderr, "spectrace: merged %zu state%s, %llu beam%s -> %s\n", command.states.size(),

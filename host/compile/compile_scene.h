@@ -55,6 +55,14 @@ struct LightSummary {
   std::string cannotShineOnCameraBecause;
 };
 
+// What CompiledScene::irradiancePerCount needs, kept by what writes render
+// states after the plan has gone to the tracer.
+struct IrradianceScale {
+  double sampledPowerW = 0.0, pixelAreaM2 = 0.0;
+  uint64_t weightUnits = 1;
+  double perCount(uint64_t beams) const { return sampledPowerW / (double(beams) * pixelAreaM2 * double(weightUnits)); }
+};
+
 struct CompiledScene {
   DeviceScene device;
   FilmLayout film;                      // what the device stores, and how
@@ -74,9 +82,8 @@ struct CompiledScene {
   // full-weight beam carries sampledPowerW * exposure / beams joules, spread
   // over one pixel's area and the exposure time (which cancels), and adds
   // weightUnits counts.
-  double irradiancePerCount(uint64_t beams) const {
-    return sampledPowerW / (double(beams) * film.pixelAreaM2 * double(film.weightUnits));
-  }
+  double irradiancePerCount(uint64_t beams) const { return irradianceScale().perCount(beams); }
+  IrradianceScale irradianceScale() const { return {sampledPowerW, film.pixelAreaM2, film.weightUnits}; }
 };
 
 // Each shortcut can be turned off here (the unshortened reference path);

@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
+#include <zstd.h>
 
 #include "io/atomic_file.h"
 #include "json/input_file.h"
@@ -23,20 +26,17 @@ using nlohmann::json;
 namespace jf = json_fields;
 
 constexpr char kMagic[8] = {'S', 'P', 'C', 'T', 'R', 'S', 'T', 'A'};
-// 3: weighted films in two-word counters (kWeightUnitsFractional, 2^63);
-// 2: the fingerprint's compile_options object; 1: four of the options as
-// fields of their own. 1 and 2 are still read, except their weighted films
-// (2^24 units in one word), which are refused by name.
-constexpr uint32_t kVersion = 3;
+// 4: the scene bundle, the irradiance scale, and the bundle and arrays in
+// one zstd stream; 3: weighted films in two-word counters
+// (kWeightUnitsFractional, 2^63); 2: the fingerprint's compile_options
+// object; 1: four of the options as fields of their own. 1 to 3 are still
+// read, except weighted films of 1 and 2 (2^24 units in one word), which are
+// refused by name.
+constexpr uint32_t kVersion = 4;
+constexpr uint32_t kFirstCompressedVersion = 4;
 constexpr size_t kPrefixBytes = 16;  // magic, version, header length
 constexpr size_t kDigestBytes = 32;  // SHA-256
-
-std::array<unsigned char, kDigestBytes> sha256(const unsigned char* data, size_t size) {
-  std::array<unsigned char, kDigestBytes> digest{};
-  unsigned int length = 0;
-  EVP_Digest(data, size, digest.data(), &length, EVP_sha256(), nullptr);
-  return digest;
-}
+constexpr uint64_t kReadPieceBytes = uint64_t(1) << 20;  // compressed bytes read at a time
 
 json toJson(const FilmFingerprint& f) {
   return {{"scene_file", f.sceneFile},
@@ -190,11 +190,93 @@ std::optional<uint64_t> beamsOf(const std::vector<BeamRange>& ranges, uint64_t t
   return total;
 }
 
-void appendWords(std::vector<unsigned char>& out, const std::vector<uint64_t>& words) {
-  const size_t at = out.size();
-  out.resize(at + words.size() * sizeof(uint64_t));
+// Writing.
+
+// zstd level 1, its fastest ordinary level: a state is rewritten at every
+// checkpoint and at the end while the render waits for it, and a film's
+// runs of zeros and small counts shrink well at any level.
+constexpr int kZstdLevel = 1;
+
+// One zstd frame, fed part by part straight from the bundle and the film
+// (no uncompressed copy of the film is made).
+class BodyDeflater {
+ public:
+  explicit BodyDeflater(uint64_t inflatedBytes) : context_(ZSTD_createCCtx()) {
+    if (!context_) throw FilmStateError("cannot start zstd compression (out of memory)");
+    ZSTD_CCtx_setParameter(context_, ZSTD_c_compressionLevel, kZstdLevel);
+    // The frame header then records the size, so a reader (Python's
+    // zstandard.decompress) knows it.
+    ZSTD_CCtx_setPledgedSrcSize(context_, inflatedBytes);
+  }
+  ~BodyDeflater() { ZSTD_freeCCtx(context_); }
+  BodyDeflater(const BodyDeflater&) = delete;
+  BodyDeflater& operator=(const BodyDeflater&) = delete;
+
+  void add(const void* data, size_t bytes) { run(data, bytes, ZSTD_e_continue); }
+  std::vector<unsigned char> finish() {
+    run(nullptr, 0, ZSTD_e_end);
+    return std::move(out_);
+  }
+
+ private:
+  void run(const void* data, size_t bytes, ZSTD_EndDirective mode) {
+    ZSTD_inBuffer input{data, bytes, 0};
+    for (;;) {
+      const size_t at = out_.size();
+      out_.resize(at + ZSTD_CStreamOutSize());
+      ZSTD_outBuffer output{out_.data() + at, ZSTD_CStreamOutSize(), 0};
+      const size_t left = ZSTD_compressStream2(context_, &output, &input, mode);
+      out_.resize(at + output.pos);
+      if (ZSTD_isError(left)) throw FilmStateError(fmt::format("zstd compression failed: {}", ZSTD_getErrorName(left)));
+      if (mode == ZSTD_e_end ? left == 0 : input.pos == input.size) return;
+    }
+  }
+
+  ZSTD_CCtx* context_;
+  std::vector<unsigned char> out_;
+};
+
+uint64_t inflatedBytesOf(const FilmState& state) {
+  uint64_t bytes = 0;
+  if (state.bundle) {
+    bytes += state.bundle->sceneText.size();
+    for (const auto& [path, content] : state.bundle->files) bytes += content.size();
+  }
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) bytes += state.histogram.channel(c).size() * sizeof(uint64_t);
+  return bytes;
+}
+
+// The bundle (the scene's text, then each file in path order) and the three
+// arrays, compressed as one stream.
+std::vector<unsigned char> compressedBody(const FilmState& state) {
+  BodyDeflater body(inflatedBytesOf(state));
+  if (state.bundle) {
+    body.add(state.bundle->sceneText.data(), state.bundle->sceneText.size());
+    for (const auto& [path, content] : state.bundle->files) body.add(content.data(), content.size());
+  }
   // Little-endian on every machine we build for (x86-64, arm64).
-  if (!words.empty()) std::memcpy(out.data() + at, words.data(), words.size() * sizeof(uint64_t));
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    body.add(state.histogram.channel(c).data(), state.histogram.channel(c).size() * sizeof(uint64_t));
+  return body.finish();
+}
+
+json headerOf(const FilmState& state, uint64_t compressedBytes) {
+  const SpectralHistogram& h = state.histogram;
+  json header = {{"fingerprint", toJson(state.fingerprint)},
+                 {"ranges", json::array()},
+                 {"counted_beams", h.countedBeams},
+                 {"units_per_beam", h.unitsPerBeam},
+                 {"irradiance_per_count", state.irradiancePerCount},
+                 {"compression", "zstd"},
+                 {"compressed_bytes", compressedBytes}};
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) header[filmChannelName(c)] = h.channel(c).size();
+  for (const BeamRange& r : state.ranges) header["ranges"].push_back({r.first, r.count});
+  if (state.bundle) {
+    json files = json::array();
+    for (const auto& [path, content] : state.bundle->files) files.push_back({{"path", path}, {"bytes", content.size()}});
+    header["bundle"] = {{"scene_bytes", state.bundle->sceneText.size()}, {"files", std::move(files)}};
+  }
+  return header;
 }
 
 // Reading. Everything the header says is checked before the arrays are
@@ -280,6 +362,18 @@ StatePrefix readPrefix(const InputFile& in) {
   return p;
 }
 
+// The bundle as the header lays it out: its parts' lengths, in the order
+// the compressed stream holds them (the scene's text, then each file).
+struct BundleLayout {
+  uint64_t sceneBytes = 0;
+  std::vector<std::pair<std::string, uint64_t>> files;  // path, bytes
+};
+
+// A bundled scene file is at most as big as a scene file may be, and a
+// bundled file as big as the scene loader reads one it names (its digest).
+constexpr uint64_t kMaxBundledSceneBytes = kMaxInputFileBytes;
+constexpr uint64_t kMaxBundledFileBytes = uint64_t(1) << 30;
+
 struct StateHeader {
   uint32_t version = 0;
   std::string text;  // as in the file, padding and all: the digest covers it
@@ -287,7 +381,62 @@ struct StateHeader {
   std::vector<BeamRange> ranges;
   uint64_t countedBeams = 0;
   std::array<uint64_t, device::kFilmChannelCount> lengths{};  // values in each array
+  // Version 4 on.
+  double irradiancePerCount = 0.0;
+  uint64_t compressedBytes = 0;
+  std::optional<BundleLayout> bundle;
+
+  bool compressed() const { return version >= kFirstCompressedVersion; }
+  // The bytes the compressed stream inflates to: the bundle, then the arrays.
+  unsigned __int128 inflatedBytes() const {
+    unsigned __int128 bytes = 0;
+    for (uint64_t words : lengths) bytes += (unsigned __int128)words * sizeof(uint64_t);
+    if (bundle) {
+      bytes += bundle->sceneBytes;
+      for (const auto& file : bundle->files) bytes += file.second;
+    }
+    return bytes;
+  }
 };
+
+BundleLayout bundleLayoutOf(const HeaderFields& j) {
+  BundleLayout layout;
+  layout.sceneBytes = j.u64("scene_bytes");
+  if (layout.sceneBytes > kMaxBundledSceneBytes)
+    j.source.fail(j.where("scene_bytes"), fmt::format("{} bytes: more than the {} MiB a scene file may have",
+                                                      layout.sceneBytes, kMaxBundledSceneBytes >> 20));
+  const json& files = j.at("files");
+  if (!files.is_array())
+    j.source.fail(j.where("files"), fmt::format("must be an array (got {})", jf::describe(files)));
+  std::set<std::string> seen;
+  for (size_t i = 0; i < files.size(); ++i) {
+    if (!files[i].is_object())
+      j.source.fail(jf::child(j.where("files"), i), fmt::format("must be an object (got {})", jf::describe(files[i])));
+    const HeaderFields file{j.source, files[i], jf::child(j.where("files"), i)};
+    std::string path = file.text("path");
+    const uint64_t bytes = file.u64("bytes");
+    if (path.empty()) j.source.fail(file.where("path"), "must name a file");
+    if (!seen.insert(path).second) j.source.fail(file.where("path"), fmt::format("{} is bundled twice", path));
+    if (bytes > kMaxBundledFileBytes)
+      j.source.fail(file.where("bytes"), fmt::format("{} bytes: more than the {} MiB a file named by a scene may have",
+                                                     bytes, kMaxBundledFileBytes >> 20));
+    layout.files.emplace_back(std::move(path), bytes);
+  }
+  return layout;
+}
+
+// The fields version 4 added: the irradiance scale, the compressed stream
+// and the bundle (none when the header has no "bundle").
+void readCompressionFields(const HeaderFields& fields, StateHeader& h) {
+  h.irradiancePerCount = fields.number("irradiance_per_count");
+  if (!(h.irradiancePerCount >= 0.0) || !std::isfinite(h.irradiancePerCount))
+    fields.source.fail("/irradiance_per_count", fmt::format("must be a finite number >= 0 (got {})",
+                                                            h.irradiancePerCount));
+  if (const std::string method = fields.text("compression"); method != "zstd")
+    fields.source.fail("/compression", fmt::format("{} (this spectrace reads \"zstd\")", jf::jsonQuoted(method)));
+  h.compressedBytes = fields.u64("compressed_bytes");
+  if (jf::find(fields.object, "bundle")) h.bundle = bundleLayoutOf(fields.child("bundle"));
+}
 
 StateHeader readHeader(const InputFile& in, const jf::Source& source, const StatePrefix& prefix) {
   StateHeader h;
@@ -307,6 +456,7 @@ StateHeader readHeader(const InputFile& in, const jf::Source& source, const Stat
   h.ranges = rangesOf(fields);
   h.countedBeams = fields.u64("counted_beams");
   for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) h.lengths[c] = fields.u64(filmChannelName(c));
+  if (h.compressed()) readCompressionFields(fields, h);
   return h;
 }
 
@@ -338,7 +488,10 @@ void checkLengths(const jf::Source& source, const StateHeader& h) {
 // The file's size is what the header implies, checked before the arrays
 // are read: a truncated file, or one with bytes after its end, is refused
 // by its size alone.
-void checkFileSize(const InputFile& in, const StateHeader& h) {
+void checkCompressedFileSize(const InputFile& in, const jf::Source& source, const StateHeader& h);
+
+void checkFileSize(const InputFile& in, const jf::Source& source, const StateHeader& h) {
+  if (h.compressed()) return checkCompressedFileSize(in, source, h);
   unsigned __int128 words = 0;
   std::string arrays;
   for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) {
@@ -350,6 +503,29 @@ void checkFileSize(const InputFile& in, const StateHeader& h) {
     throw in.fail(fmt::format("the file is {} bytes, but its header implies {}: {} (magic, version, header length) + "
                               "{} (header) + 8 x ({}) + {} (SHA-256); it is truncated or has bytes after its end",
                               in.size(), expected, kPrefixBytes, h.text.size(), arrays, kDigestBytes));
+}
+
+// No zstd stream inflates more than this many bytes a byte: a block yields
+// at most 128 KiB and takes at least 4 bytes (an RLE block: a 3-byte header
+// and its byte). A header may not declare more than its stream can hold, so
+// a small file cannot make the reader allocate a huge film.
+constexpr uint64_t kZstdMostBytesPerByte = 32768;
+
+// Version 4: the file holds the prefix, the header, the compressed stream
+// and the digest, and the stream can inflate to what the header declares.
+void checkCompressedFileSize(const InputFile& in, const jf::Source& source, const StateHeader& h) {
+  const unsigned __int128 expected =
+      (unsigned __int128)kPrefixBytes + h.text.size() + h.compressedBytes + kDigestBytes;
+  if (expected != in.size())
+    throw in.fail(fmt::format("the file is {} bytes, but its header implies {}: {} (magic, version, header length) + "
+                              "{} (header) + {} (/compressed_bytes) + {} (SHA-256); it is truncated or has bytes after "
+                              "its end",
+                              in.size(), expected, kPrefixBytes, h.text.size(), h.compressedBytes, kDigestBytes));
+  if (h.inflatedBytes() > (unsigned __int128)h.compressedBytes * kZstdMostBytesPerByte)
+    source.fail("/compressed_bytes",
+                fmt::format("{} bytes of zstd cannot inflate to the {} bytes the header declares (the bundle and 8 x "
+                            "the arrays' lengths)",
+                            h.compressedBytes, h.inflatedBytes()));
 }
 
 class Sha256 {
@@ -372,7 +548,7 @@ class Sha256 {
 
 // The arrays, read straight into the film, and the SHA-256 of every byte
 // before the last 32 compared with those 32.
-SpectralHistogram readArrays(const InputFile& in, const StatePrefix& prefix, const StateHeader& h) {
+SpectralHistogram readRawArrays(const InputFile& in, const StatePrefix& prefix, const StateHeader& h) {
   const FilmFingerprint& f = h.fingerprint;
   SpectralHistogram film(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
   film.countedBeams = h.countedBeams;
@@ -393,6 +569,145 @@ SpectralHistogram readArrays(const InputFile& in, const StatePrefix& prefix, con
     throw in.fail("checksum mismatch: the SHA-256 in its last 32 bytes is not that of the bytes before; the file is "
                   "corrupted");
   return film;
+}
+
+// Version 4: the SHA-256 of the prefix, the header and the compressed stream
+// (read in pieces) against the last 32 bytes, before anything is inflated,
+// so the decompressor only ever sees the bytes the writer wrote.
+void checkDigest(const InputFile& in, const StatePrefix& prefix, const StateHeader& h) {
+  Sha256 digest;
+  digest.add(prefix.bytes.data(), prefix.bytes.size());
+  digest.add(h.text.data(), h.text.size());
+  std::vector<unsigned char> piece(std::min<uint64_t>(h.compressedBytes, kReadPieceBytes));
+  const uint64_t start = kPrefixBytes + h.text.size();
+  for (uint64_t done = 0; done < h.compressedBytes;) {
+    const size_t size = size_t(std::min<uint64_t>(h.compressedBytes - done, piece.size()));
+    in.readAt(start + done, piece.data(), size);
+    digest.add(piece.data(), size);
+    done += size;
+  }
+  std::array<unsigned char, kDigestBytes> stored{};
+  in.readAt(start + h.compressedBytes, stored.data(), stored.size());
+  if (digest.finish() != stored)
+    throw in.fail("checksum mismatch: the SHA-256 in its last 32 bytes is not that of the bytes before; the file is "
+                  "corrupted");
+}
+
+// The version 4 body: one zstd stream, read from the file in pieces and
+// inflated straight into each part's place (the bundle's texts, the film's
+// arrays), so a big film is never held twice. A stream that is corrupt,
+// ends before the bytes the header declares or holds more is refused,
+// naming the file and the part.
+class BodyInflater {
+ public:
+  BodyInflater(const InputFile& in, uint64_t offset, uint64_t bytes)
+      : in_(in), next_(offset), end_(offset + bytes), context_(ZSTD_createDCtx()) {
+    if (!context_) throw in_.fail("cannot start zstd decompression (out of memory)");
+  }
+  ~BodyInflater() { ZSTD_freeDCtx(context_); }
+  BodyInflater(const BodyInflater&) = delete;
+  BodyInflater& operator=(const BodyInflater&) = delete;
+
+  // `out` (a std::string or std::vector<uint64_t>) holds the stream's next
+  // `bytes` bytes; it grows as they come, so memory follows the stream.
+  template <class Container>
+  void fill(Container& out, uint64_t bytes, const std::string& part) {
+    using Element = typename Container::value_type;
+    out.clear();
+    try {
+      out.reserve(size_t(bytes / sizeof(Element)));
+    } catch (const std::exception&) {  // bad_alloc, length_error
+      throw in_.fail(fmt::format("{} of {} bytes does not fit in memory", part, bytes));
+    }
+    for (uint64_t done = 0; done < bytes;) {
+      const uint64_t step = std::min<uint64_t>(bytes - done, kInflateStepBytes);
+      out.resize(size_t((done + step) / sizeof(Element)));
+      inflateInto(reinterpret_cast<unsigned char*>(out.data()) + done, size_t(step), part);
+      done += step;
+    }
+  }
+
+  // Refuses a stream that holds more than the parts filled, whose frame is
+  // cut short after them, or with bytes after its frame.
+  void finish() {
+    unsigned char extra = 0;
+    while (lastResult_ != 0) {  // the frame has not ended
+      const bool more = input_.pos < input_.size || refill();
+      ZSTD_outBuffer output{&extra, 1, 0};
+      decompress(output, "the end of the stream");
+      if (output.pos != 0)
+        throw in_.fail("the compressed stream inflates past the bytes its header declares (the bundle and 8 x the "
+                       "arrays' lengths)");
+      if (!more && lastResult_ != 0)
+        throw in_.fail("the compressed stream ends before its zstd frame does; it is truncated");
+    }
+    if (input_.pos != input_.size || next_ != end_)
+      throw in_.fail("the compressed stream has bytes after its zstd frame");
+  }
+
+ private:
+  static constexpr uint64_t kInflateStepBytes = uint64_t(16) << 20;  // a multiple of 8: whole words a step
+
+  void inflateInto(unsigned char* out, size_t bytes, const std::string& part) {
+    ZSTD_outBuffer output{out, bytes, 0};
+    while (output.pos < output.size) {
+      if (input_.pos == input_.size) refill();
+      const size_t produced = output.pos, consumed = input_.pos;
+      decompress(output, part);
+      if (output.pos == produced && input_.pos == consumed)
+        throw in_.fail(fmt::format("the compressed stream ends within {}, before the bytes its header declares; it "
+                                   "is truncated",
+                                   part));
+    }
+  }
+
+  void decompress(ZSTD_outBuffer& output, const std::string& part) {
+    lastResult_ = ZSTD_decompressStream(context_, &output, &input_);
+    if (ZSTD_isError(lastResult_))
+      throw in_.fail(fmt::format("the compressed stream is corrupt within {}: {}", part,
+                                 ZSTD_getErrorName(lastResult_)));
+  }
+
+  // The next piece of the compressed bytes; false after the last.
+  bool refill() {
+    if (next_ == end_) return false;
+    piece_.resize(size_t(std::min<uint64_t>(end_ - next_, kReadPieceBytes)));
+    in_.readAt(next_, piece_.data(), piece_.size());
+    next_ += piece_.size();
+    input_ = {piece_.data(), piece_.size(), 0};
+    return true;
+  }
+
+  const InputFile& in_;
+  uint64_t next_, end_;  // the compressed bytes not yet read
+  ZSTD_DCtx* context_;
+  std::vector<unsigned char> piece_;
+  ZSTD_inBuffer input_{nullptr, 0, 0};
+  size_t lastResult_ = 1;  // ZSTD_decompressStream's last: 0 when a frame has ended
+};
+
+// The bundle and the film, inflated from the version 4 body in the order
+// the header lists them.
+void readCompressedBody(const InputFile& in, const StateHeader& h, FilmState& state) {
+  BodyInflater body(in, kPrefixBytes + h.text.size(), h.compressedBytes);
+  if (h.bundle) {
+    SceneBundle bundle;
+    body.fill(bundle.sceneText, h.bundle->sceneBytes, "the bundled scene");
+    for (const auto& [path, bytes] : h.bundle->files)
+      body.fill(bundle.files[path], bytes, "the bundled file " + path);
+    state.bundle = std::move(bundle);
+  }
+  const FilmFingerprint& f = h.fingerprint;
+  SpectralHistogram& film = state.histogram;
+  film.pixelsX = f.pixelsX;
+  film.pixelsY = f.pixelsY;
+  film.bins = f.bins;
+  film.unitsPerBeam = f.weightUnits;
+  film.countedBeams = h.countedBeams;
+  // Little-endian on every machine we build for (x86-64, arm64).
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    body.fill(film.channel(c), h.lengths[c] * sizeof(uint64_t), std::string("/") + filmChannelName(c));
+  body.finish();
 }
 
 }  // namespace
@@ -428,29 +743,29 @@ FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFi
 }
 
 void writeFilmState(const std::filesystem::path& file, const FilmState& state) {
-  const SpectralHistogram& h = state.histogram;
-  json header = {{"fingerprint", toJson(state.fingerprint)},
-                 {"ranges", json::array()},
-                 {"counted_beams", h.countedBeams},
-                 {"units_per_beam", h.unitsPerBeam}};
-  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) header[filmChannelName(c)] = h.channel(c).size();
-  for (const BeamRange& r : state.ranges) header["ranges"].push_back({r.first, r.count});
-  std::string text = header.dump();
-  text.append((8 - (kPrefixBytes + text.size()) % 8) % 8, ' ');  // the arrays start 8-byte aligned
+  if (!std::isfinite(state.irradiancePerCount) || state.irradiancePerCount < 0.0)
+    throw FilmStateError(fmt::format("{}: irradiance_per_count {} is not a finite number >= 0", file.string(),
+                                     state.irradiancePerCount));
+  const std::vector<unsigned char> body = compressedBody(state);
+  std::string text = headerOf(state, body.size()).dump();
+  text.append((8 - (kPrefixBytes + text.size()) % 8) % 8, ' ');  // the body starts 8-byte aligned
 
-  std::vector<unsigned char> bytes(std::begin(kMagic), std::end(kMagic));
+  std::vector<unsigned char> head(std::begin(kMagic), std::end(kMagic));
   const uint32_t prefix[2] = {kVersion, uint32_t(text.size())};
-  bytes.insert(bytes.end(), reinterpret_cast<const unsigned char*>(prefix),
-               reinterpret_cast<const unsigned char*>(prefix) + sizeof prefix);
-  bytes.insert(bytes.end(), text.begin(), text.end());
-  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c) appendWords(bytes, h.channel(c));
-  const auto digest = sha256(bytes.data(), bytes.size());
-  bytes.insert(bytes.end(), digest.begin(), digest.end());
+  head.insert(head.end(), reinterpret_cast<const unsigned char*>(prefix),
+              reinterpret_cast<const unsigned char*>(prefix) + sizeof prefix);
+  head.insert(head.end(), text.begin(), text.end());
+  Sha256 digest;
+  digest.add(head.data(), head.size());
+  digest.add(body.data(), body.size());
+  const auto sum = digest.finish();
 
   try {
     io_detail::AtomicFile out(file, "state");
-    if (int err = io_detail::pwriteAll(out.fd(), bytes.data(), bytes.size(), 0))
-      out.fail("write: " + io_detail::errnoText(err));
+    int err = io_detail::pwriteAll(out.fd(), head.data(), head.size(), 0);
+    if (!err) err = io_detail::pwriteAll(out.fd(), body.data(), body.size(), head.size());
+    if (!err) err = io_detail::pwriteAll(out.fd(), sum.data(), sum.size(), head.size() + body.size());
+    if (err) out.fail("write: " + io_detail::errnoText(err));
     out.commit();
   } catch (const std::exception& e) {
     throw FilmStateError(e.what());
@@ -466,9 +781,15 @@ FilmState readFilmState(const std::filesystem::path& file) {
     const uint64_t beams = checkRanges(source, header.ranges);
     checkCountedBeams(source, header, beams);
     checkLengths(source, header);
-    checkFileSize(in, header);
+    checkFileSize(in, source, header);
     FilmState state;
-    state.histogram = readArrays(in, prefix, header);
+    if (header.compressed()) {
+      checkDigest(in, prefix, header);
+      readCompressedBody(in, header, state);
+      state.irradiancePerCount = header.irradiancePerCount;
+    } else {
+      state.histogram = readRawArrays(in, prefix, header);
+    }
     state.fingerprint = std::move(header.fingerprint);
     state.ranges = sortedRanges(std::move(header.ranges));
     return state;
@@ -528,6 +849,14 @@ FilmState mergeStates(const FilmState& a, const FilmState& b) {
   // beside others, and a reader refuses it there.
   std::erase_if(out.ranges, [](const BeamRange& r) { return r.count == 0; });
   out.ranges = sortedRanges(std::move(out.ranges));
+  // Equal fingerprints mean equal scene and file digests, so any bundle
+  // serves the merge; a state from before bundles (version 3) takes one
+  // from the state it merges with, with the scene path its keys resolve from.
+  if (!out.bundle && b.bundle) {
+    out.bundle = b.bundle;
+    out.fingerprint.sceneFile = b.fingerprint.sceneFile;
+  }
+  out.irradiancePerCount = 0.0;
   return out;
 }
 

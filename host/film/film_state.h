@@ -2,11 +2,13 @@
 // The exact render state: a film's integer counters with the fingerprint of
 // what was traced, so partial renders merge exactly and an interrupted
 // render resumes bit-identically. The file format is docs/state-format.md:
-// a magic, a version, a JSON header (the fingerprint, the beam ranges and
-// the arrays' lengths), the uint64 arrays, and a SHA-256 of all before it.
+// a magic, a version, a JSON header (the fingerprint, the beam ranges, the
+// arrays' and the bundle's lengths), one zstd stream of the scene bundle and
+// the uint64 arrays, and a SHA-256 of all before it.
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -55,10 +57,30 @@ struct FilmFingerprint {
   uint32_t wavelengthsPerBeam = 1;
 };
 
+// What developing or merging a state needs besides its film, carried in the
+// state so it needs no other file: the scene's exact bytes (those whose
+// SHA-256 is the fingerprint's scene_sha256) and the bytes of every file the
+// scene names (CSV spectra and reflectances, OBJ meshes), keyed by the path
+// the scene loader resolved for it (relative paths stay relative: the same
+// key comes back when the text is parsed again under the fingerprint's
+// sceneFile in another working folder).
+struct SceneBundle {
+  std::string sceneText;
+  std::map<std::string, std::string> files;
+  bool operator==(const SceneBundle&) const = default;
+};
+
 struct FilmState {
   FilmFingerprint fingerprint;
   std::vector<BeamRange> ranges;  // sorted, disjoint, none past 2^64, at most 2^64 - 1 beams in all
   SpectralHistogram histogram;    // the whole sensor and spectrum
+  // None in states written before version 4 (they develop from the scene
+  // file the fingerprint names) or written without one.
+  std::optional<SceneBundle> bundle;
+  // W/m^2 per bin carried by one count (CompiledScene::irradiancePerCount
+  // of beams()), so a reader gets physical units from the state alone; 0
+  // when unknown (states before version 4) or when the state holds no beams.
+  double irradiancePerCount = 0.0;
 
   uint64_t beams() const;  // the ranges' beams (readers and merges refuse a sum past 2^64 - 1)
 };
@@ -72,8 +94,9 @@ FilmFingerprint fingerprintOf(const FilmLayout& film, const std::string& sceneFi
 void writeFilmState(const std::filesystem::path& file, const FilmState& state);
 // Reads and checks a state (docs/state-format.md, "What a reader checks"):
 // the magic, version and header first, then the file's size against the
-// one the header implies, and only then the arrays and the checksum. Never
-// returns half a state. Throws FilmStateError naming the file and the
+// one the header implies, and only then the arrays and the checksum (for
+// version 4 the checksum first, then the bundle and arrays, decompressed
+// straight into their places). Never returns half a state. Throws FilmStateError naming the file and the
 // header field ("a.state: /ranges/2: ...").
 FilmState readFilmState(const std::filesystem::path& file);
 
@@ -92,7 +115,10 @@ std::string fingerprintDifference(const FilmFingerprint& a, const FilmFingerprin
 // than 2^64 - 1.
 std::string mergeRefusal(const FilmState& a, const FilmState& b);
 // a + b, exactly. Throws FilmStateError with mergeRefusal's reason, or the
-// counter whose sum would pass 2^64 - 1 (channel, pixel, bin).
+// counter whose sum would pass 2^64 - 1 (channel, pixel, bin). The bundle is
+// the first one of a and b that has one, with that state's sceneFile (its
+// keys resolve from it); irradiancePerCount is left 0, for the caller to
+// compute from the compiled scene for the merged beams.
 FilmState mergeStates(const FilmState& a, const FilmState& b);
 // The states of `files` (at least one) read and merged in order. A refusal
 // names the files: "cannot merge c.state with a.state, b.state: <why>".

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
+#include <zstd.h>
 
 #include "backend/cpu_tracer.h"
 #include "backend/vulkan_tracer.h"
@@ -173,6 +174,43 @@ std::string withHeader(const std::string& bytes, const nlohmann::json& header, u
   return signedState(out);
 }
 
+// A state file's header and the bytes between it and the digest.
+struct StateParts {
+  nlohmann::json header;
+  std::string body;
+};
+
+StateParts partsOf(const std::string& bytes) {
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return {nlohmann::json::parse(bytes.substr(16, length)), bytes.substr(16 + length, bytes.size() - 48 - length)};
+}
+
+// A state file of `version` from a header and a body, padded and signed as
+// writeFilmState does.
+std::string stateBytes(uint32_t version, const nlohmann::json& header, const std::string& body) {
+  std::string text = header.dump();
+  while ((16 + text.size()) % 8 != 0) text += ' ';
+  std::string out = "SPCTRSTA";
+  const uint32_t prefix[2] = {version, uint32_t(text.size())};
+  out.append(reinterpret_cast<const char*>(prefix), sizeof prefix);
+  return signedState(out + text + body);
+}
+
+// `state` as an older spectrace wrote it (version 1 to 3): the header
+// without the fields version 4 added, and the arrays uncompressed.
+std::string legacyStateBytes(const FilmState& state, uint32_t version) {
+  const fs::path file = tempFile("legacy_source.state");
+  writeFilmState(file, state);
+  nlohmann::json header = partsOf(fileBytes(file)).header;
+  for (const char* added : {"irradiance_per_count", "compression", "compressed_bytes", "bundle"}) header.erase(added);
+  std::string arrays;
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    arrays.append(reinterpret_cast<const char*>(state.histogram.channel(c).data()),
+                  state.histogram.channel(c).size() * sizeof(uint64_t));
+  return stateBytes(version, header, arrays);
+}
+
 // Version 1 recorded four compile options as fields of their own; a state
 // written then still reads, with those options and the rest at their
 // defaults, and merges with the same render's version 2 state.
@@ -185,12 +223,7 @@ TEST(FilmState, VersionOneStatesStillRead) {
   state.ranges = {{0, 10}};
   state.histogram = SpectralHistogram(1, 1, 1);
   const fs::path file = tempFile("version1.state");
-  writeFilmState(file, state);
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string bytes = legacyStateBytes(state, 3);
   uint32_t headerLength = 0;
   std::memcpy(&headerLength, bytes.data() + 12, 4);
   nlohmann::json header = nlohmann::json::parse(bytes.substr(16, headerLength));
@@ -335,7 +368,7 @@ TEST(FilmState, HugeFilesAreRefusedByMagicOrSizeBeforeTheyAreRead) {
                           0),
             0u)
       << refusal;
-  EXPECT_NE(refusal.find("8 x (24 /counts + 0 /colour_sums + 0 /squared_weight_sums) + 32 (SHA-256)"),
+  EXPECT_NE(refusal.find(" (/compressed_bytes) + 32 (SHA-256); it is truncated or has bytes after its end"),
             std::string::npos)
       << refusal;
 }
@@ -508,6 +541,158 @@ TEST(FilmState, MergedRangesOfMoreThan2To64Minus1BeamsAreRefused) {
   const FilmState merged = mergeStates(craftedState({{0, 10}}), craftedState({{10, 0}}));
   EXPECT_EQ(merged.ranges, (std::vector<BeamRange>{{0, 10}}));
   EXPECT_EQ(refusalOf(merged), "");
+}
+
+// A state carries its scene bundle (binary bytes and all) and its
+// irradiance scale, and reads back with them and its film bit for bit.
+TEST(FilmState, VersionFourCarriesTheBundleAndScaleBitForBit) {
+  const CompiledScene plan = compileScene(weightedScene(), 4);
+  CpuTracer cpu(plan, 2);
+  FilmState state = stateOf(plan, cpu, 1000, 50'000, 4);
+  SceneBundle bundle;
+  bundle.sceneText = "{\"lights\": []}\n";
+  bundle.files["spd/lamp.csv"] = "wavelength_nm,value\n380,1\n";
+  bundle.files["models/cube.obj"] = std::string("v 0 0 0\n\0\xff\x80 not UTF-8", 23);
+  state.bundle = bundle;
+  state.irradiancePerCount = plan.irradiancePerCount(50'000);
+  const fs::path file = tempFile("bundle.state");
+  writeFilmState(file, state);
+  const FilmState back = readFilmState(file);
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    EXPECT_EQ(back.histogram.channel(c), state.histogram.channel(c)) << filmChannelName(c);
+  EXPECT_EQ(back.histogram.countedBeams, state.histogram.countedBeams);
+  EXPECT_TRUE(back.histogram.sameShape(state.histogram));
+  EXPECT_EQ(back.ranges, state.ranges);
+  EXPECT_EQ(fingerprintText(back.fingerprint), fingerprintText(state.fingerprint));
+  ASSERT_TRUE(back.bundle.has_value());
+  EXPECT_EQ(*back.bundle, bundle);
+  EXPECT_EQ(back.irradiancePerCount, state.irradiancePerCount);
+  // The header says it for a reader without spectrace.
+  const nlohmann::json header = partsOf(fileBytes(file)).header;
+  EXPECT_EQ(header.at("irradiance_per_count").get<double>(), state.irradiancePerCount);
+  EXPECT_EQ(header.at("compression"), "zstd");
+  EXPECT_EQ(header.at("bundle").at("scene_bytes"), bundle.sceneText.size());
+  EXPECT_EQ(header.at("bundle").at("files").at(0).at("path"), "models/cube.obj");
+  EXPECT_EQ(header.at("bundle").at("files").at(0).at("bytes"), 23);
+}
+
+// An empty 512 x 512 pixel film of 64 bins (128 MiB of counters) is a
+// small file, and reads back whole.
+TEST(FilmState, AnEmptyBigFilmCompressesSmall) {
+  FilmState state = craftedState({{0, 0}});
+  FilmFingerprint& f = state.fingerprint;
+  f.pixelsX = f.pixelsY = 512;
+  f.bins = f.storedBins = 64;
+  f.window = {0, 0, 512, 512};
+  state.histogram = SpectralHistogram(512, 512, 64);
+  const fs::path file = tempFile("empty_big.state");
+  writeFilmState(file, state);
+  EXPECT_LT(fs::file_size(file), uint64_t(1) << 20);
+  const FilmState back = readFilmState(file);
+  EXPECT_EQ(back.histogram.counts(), state.histogram.counts());
+}
+
+// The crafted body `body` in place of the file's compressed stream, its
+// length re-stated and the file re-signed: a stream that passes the
+// checksum, for the decompressor's own refusals.
+std::string withBody(const std::string& bytes, const std::string& body) {
+  StateParts parts = partsOf(bytes);
+  parts.header["compressed_bytes"] = body.size();
+  return stateBytes(4, parts.header, body);
+}
+
+std::string zstdOf(const std::string& raw) {
+  std::string out(ZSTD_compressBound(raw.size()), '\0');
+  out.resize(ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), 1));
+  return out;
+}
+
+// A compressed stream that is corrupt, inflates past the lengths its header
+// declares, ends before them, is cut short or has bytes after its frame is
+// refused naming the file, never read in part.
+TEST(FilmState, BrokenCompressedStreamsAreRefusedNamingTheFile) {
+  FilmState state = craftedState({{0, 10}}, 5, true);
+  state.histogram.counts()[3] = 7;
+  state.bundle = SceneBundle{"{\"scene\": 1}", {{"a.csv", "380,1\n"}}};
+  const fs::path file = tempFile("stream.state");
+  writeFilmState(file, state);
+  const std::string bytes = fileBytes(file);
+  const std::string body = partsOf(bytes).body;
+  std::string raw = state.bundle->sceneText + state.bundle->files.at("a.csv");
+  for (uint32_t c = 0; c < device::kFilmChannelCount; ++c)
+    raw.append(reinterpret_cast<const char*>(state.histogram.channel(c).data()),
+               state.histogram.channel(c).size() * sizeof(uint64_t));
+  const fs::path crafted = tempFile("crafted_stream.state");
+  auto refusal = [&](const std::string& newBody) {
+    std::ofstream(crafted, std::ios::binary | std::ios::trunc) << withBody(bytes, newBody);
+    const std::string why = readRefusal(crafted);
+    if (!why.empty()) EXPECT_EQ(why.rfind(crafted.string() + ": ", 0), 0u) << "names the file: " << why;
+    return why;
+  };
+  EXPECT_EQ(refusal(body), "") << "the re-signed stream itself reads";
+  EXPECT_EQ(refusal(zstdOf(raw)), "") << "so does any zstd frame of the same bytes";
+  std::string corrupt = body;
+  corrupt[0] ^= 0x55;  // the frame's magic number
+  EXPECT_NE(refusal(corrupt).find("the compressed stream is corrupt within the bundled scene"), std::string::npos)
+      << refusal(corrupt);
+  const std::string past = refusal(zstdOf(raw + std::string(8, '\1')));
+  EXPECT_NE(past.find("the compressed stream inflates past the bytes its header declares"), std::string::npos) << past;
+  const std::string shortOfIt = refusal(zstdOf(raw.substr(0, raw.size() - 8)));
+  EXPECT_NE(shortOfIt.find("the compressed stream ends within /colour_sums, before the bytes its header declares"),
+            std::string::npos)
+      << shortOfIt;
+  const std::string cut = refusal(body.substr(0, body.size() - 3));
+  EXPECT_NE(cut.find("truncated"), std::string::npos) << cut;
+  const std::string after = refusal(body + "xyz");
+  EXPECT_NE(after.find("the compressed stream has bytes after its zstd frame"), std::string::npos) << after;
+}
+
+// A header may not declare a film bigger than its stream can inflate to:
+// a file of a few hundred bytes cannot make the reader allocate gigabytes.
+TEST(FilmState, AFilmBeyondWhatItsStreamCanHoldIsRefusedBeforeAllocating) {
+  const fs::path file = tempFile("claims.state");
+  writeFilmState(file, craftedState({{0, 10}}));
+  StateParts parts = partsOf(fileBytes(file));
+  parts.header["fingerprint"]["pixels_x"] = 4096;
+  parts.header["fingerprint"]["pixels_y"] = 4096;
+  parts.header["fingerprint"]["bins"] = 64;
+  parts.header["counts"] = uint64_t(4096) * 4096 * 64;
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << stateBytes(4, parts.header, parts.body);
+  const std::string refusal = readRefusal(file);
+  EXPECT_NE(refusal.find("claims.state: /compressed_bytes: " + std::to_string(parts.body.size()) +
+                         " bytes of zstd cannot inflate to the 8589934592 bytes the header declares"),
+            std::string::npos)
+      << refusal;
+}
+
+// A state written before version 4 (uncompressed, no bundle) still reads,
+// and merged with a version 4 state of the same render takes that one's
+// bundle, with the scene path its keys resolve from.
+TEST(FilmState, VersionThreeStatesStillReadAndTakeABundleInAMerge) {
+  FilmState old = craftedState({{0, 10}}, 4, true);
+  old.histogram.counts()[5] = 3;
+  old.histogram.colourSums()[2] = 11;
+  const fs::path oldFile = tempFile("version3.state");
+  std::ofstream(oldFile, std::ios::binary | std::ios::trunc) << legacyStateBytes(old, 3);
+  const FilmState read = readFilmState(oldFile);
+  EXPECT_EQ(read.histogram.counts(), old.histogram.counts());
+  EXPECT_EQ(read.histogram.colourSums(), old.histogram.colourSums());
+  EXPECT_EQ(read.histogram.countedBeams, 4u);
+  EXPECT_EQ(read.ranges, old.ranges);
+  EXPECT_FALSE(read.bundle.has_value());
+  EXPECT_EQ(read.irradiancePerCount, 0.0);
+
+  FilmState bundled = craftedState({{10, 10}}, 0, true);
+  bundled.fingerprint.sceneFile = "elsewhere/scene.json";
+  bundled.bundle = SceneBundle{"{}", {{"elsewhere/a.csv", "380,1\n"}}};
+  const fs::path newFile = tempFile("version4.state");
+  writeFilmState(newFile, bundled);
+  for (const FilmState& merged : {mergeStateFiles({oldFile, newFile}), mergeStateFiles({newFile, oldFile})}) {
+    ASSERT_TRUE(merged.bundle.has_value());
+    EXPECT_EQ(*merged.bundle, *bundled.bundle);
+    EXPECT_EQ(merged.fingerprint.sceneFile, "elsewhere/scene.json");
+    EXPECT_EQ(merged.beams(), 20u);
+  }
 }
 
 // Three shards of different sizes, traced on the CPU, the GPU and the CPU,

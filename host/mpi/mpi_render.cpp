@@ -62,7 +62,7 @@ RenderResult traceBeams(const Device& device, const RenderJob& job, CompiledScen
 
 FilmState combinedState(const RenderJob& job, const CompiledScene& plan, const std::vector<BeamRange>& finished,
                         SpectralHistogram film) {
-  FilmState state{jobFingerprint(job, plan), {}, std::move(film)};
+  FilmState state{jobFingerprint(job, plan), {}, std::move(film), sceneBundleOf(job.scene)};
   for (const BeamRange& range : finished) {
     if (range.count == 0) continue;
     if (!state.ranges.empty() && state.ranges.back().first + state.ranges.back().count == range.first)
@@ -70,6 +70,7 @@ FilmState combinedState(const RenderJob& job, const CompiledScene& plan, const s
     else
       state.ranges.push_back(range);
   }
+  state.irradiancePerCount = stateIrradiancePerCount(plan.irradianceScale(), state.beams());
   return state;
 }
 

@@ -41,7 +41,8 @@ RenderResult traceBeams(const Device& device, const RenderJob& job, CompiledScen
 
 // The state of the job's beams that every rank finished: `finished` holds
 // each rank's traced range (empty ones are left out, neighbours joined),
-// `film` the sum of their films.
+// `film` the sum of their films; with the scene bundled and the irradiance
+// scale of those beams.
 FilmState combinedState(const RenderJob& job, const CompiledScene& plan, const std::vector<BeamRange>& finished,
                         SpectralHistogram film);
 

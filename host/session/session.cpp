@@ -2,6 +2,7 @@
 
 #include "compile/compile_scene.h"
 #include "film/develop.h"
+#include "json/input_file.h"
 #include "json/scene_error.h"
 #include "session/output_guard.h"
 
@@ -101,6 +102,35 @@ FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) 
   f.wavelengthsPerBeam = plan.device.constants.wavelengthsPerPath;
   f.referencedFilesSha256 = job.scene.referencedFilesSha256;
   return f;
+}
+
+std::optional<SceneBundle> sceneBundleOf(const Scene& scene) {
+  if (scene.sourceText.empty()) return std::nullopt;  // built in code: no text to carry
+  const std::string sceneName = scene.sourcePath.empty() ? std::string("<scene>") : scene.sourcePath.string();
+  if (sceneSha256Hex(scene.sourceText) != scene.sourceSha256)
+    throw FilmStateError(fmt::format("{}: the scene's text does not hash to its SHA-256 {}; cannot bundle it",
+                                     sceneName, scene.sourceSha256));
+  SceneBundle bundle{scene.sourceText, {}};
+  try {
+    for (const std::filesystem::path& file : referencedFiles(scene))
+      if (!bundle.files.count(file.string()))
+        bundle.files.emplace(file.string(), readInputFile(file, "file named by the scene", uint64_t(1) << 30));
+    // The digest of the bytes just read, by the loader's own rule.
+    const BundledInputFiles served(bundle.files, "the bundle");
+    if (referencedFilesSha256(scene) != scene.referencedFilesSha256)
+      throw FilmStateError(fmt::format("{}: a file the scene names (an OBJ mesh or CSV) has changed since the scene "
+                                       "was read; cannot bundle it",
+                                       sceneName));
+  } catch (const InputFileError& e) {
+    throw FilmStateError(fmt::format("{}: cannot bundle a file the scene names: {}", sceneName, e.what()));
+  } catch (const SceneError& e) {
+    throw FilmStateError(fmt::format("cannot bundle a file the scene names: {}", e.what()));
+  }
+  return bundle;
+}
+
+double stateIrradiancePerCount(const IrradianceScale& scale, uint64_t beams) {
+  return beams == 0 ? 0.0 : scale.perCount(beams);
 }
 
 RenderOptions RenderJob::renderOptions() const {
@@ -360,10 +390,14 @@ std::shared_future<RenderResult> Session::renderOverlapped(const RenderJob& job)
     options.loop.resumeFilm = &job.resume->histogram;
     options.loop.resumedBeams = job.resume->beams();
   }
-  auto writeState = [state = job.state, fingerprint, first = options.firstBeam](const SpectralHistogram& film,
-                                                                                uint64_t done) {
+  // Bundled once, shared by every checkpoint's state and the last.
+  std::shared_ptr<const std::optional<SceneBundle>> bundle;
+  if (!job.state.empty()) bundle = std::make_shared<const std::optional<SceneBundle>>(sceneBundleOf(job.scene));
+  auto writeState = [state = job.state, fingerprint, bundle, scale = plan.irradianceScale(),
+                     first = options.firstBeam](const SpectralHistogram& film, uint64_t done) {
     if (state.empty()) return;
-    writeFilmState(state, FilmState{fingerprint, {{first, done}}, film});
+    writeFilmState(state, FilmState{fingerprint, {{first, done}}, film, *bundle,
+                                    stateIrradiancePerCount(scale, done)});
   };
   const auto warn = job.warn ? job.warn : std::function<void(const std::string&)>(warnOnStderr);
   CheckpointWriter exrCheckpoints(warn), stateCheckpoints(warn);
@@ -428,24 +462,60 @@ BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_
   return {firstBeam + cut(index), cut(index + 1) - cut(index)};
 }
 
-RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
-                              double wallSeconds) const {
+namespace {
+
+// The scene of a state without a bundle: its file, which must still hash
+// the same, as must the files it names.
+Scene sceneFileOf(const FilmState& state) {
   const FilmFingerprint& f = state.fingerprint;
-  RenderJob job;
+  Scene scene;
   try {
-    job.scene = loadScene(f.sceneFile);
+    scene = loadScene(f.sceneFile);
   } catch (const std::exception& e) {
     // The scene's path is the one the render was given, relative to the
     // folder it ran in: e.what() names it and, if missing, where it was looked for.
     throw FilmStateError(fmt::format("cannot read the scene the state was rendered from: {}", e.what()));
   }
-  if (job.scene.sourceSha256 != f.sceneSha256)
+  if (scene.sourceSha256 != f.sceneSha256)
     throw FilmStateError(fmt::format("the scene file {} has changed since the state was written (SHA-256 {} against {})",
-                                     f.sceneFile, job.scene.sourceSha256, f.sceneSha256));
-  if (job.scene.referencedFilesSha256 != f.referencedFilesSha256)
+                                     f.sceneFile, scene.sourceSha256, f.sceneSha256));
+  if (scene.referencedFilesSha256 != f.referencedFilesSha256)
     throw FilmStateError(fmt::format("a file the scene {} names (an OBJ mesh or CSV) has changed since the state was "
                                      "written (referenced_files_sha256 {} against {})",
-                                     f.sceneFile, job.scene.referencedFilesSha256, f.referencedFilesSha256));
+                                     f.sceneFile, scene.referencedFilesSha256, f.referencedFilesSha256));
+  return scene;
+}
+
+// The scene a state carries: its text parsed under the fingerprint's scene
+// path, so relative paths resolve to the bundle's keys, with every file it
+// names read from the bundle and none from the disk.
+Scene bundledSceneOf(const FilmState& state) {
+  const FilmFingerprint& f = state.fingerprint;
+  Scene scene;
+  try {
+    const BundledInputFiles served(state.bundle->files, "the state's bundle");
+    scene = parseScene(state.bundle->sceneText, f.sceneFile);
+  } catch (const std::exception& e) {
+    throw FilmStateError(fmt::format("cannot use the scene bundled in the state: {}", e.what()));
+  }
+  if (scene.sourceSha256 != f.sceneSha256)
+    throw FilmStateError(fmt::format("the scene bundled in the state is not the one it was rendered from (SHA-256 {} "
+                                     "against /fingerprint/scene_sha256 {})",
+                                     scene.sourceSha256, f.sceneSha256));
+  if (scene.referencedFilesSha256 != f.referencedFilesSha256)
+    throw FilmStateError(fmt::format("the files bundled in the state are not those the scene named when it was "
+                                     "rendered (referenced_files_sha256 {} against {})",
+                                     scene.referencedFilesSha256, f.referencedFilesSha256));
+  return scene;
+}
+
+}  // namespace
+
+RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
+                              double wallSeconds) const {
+  const FilmFingerprint& f = state.fingerprint;
+  RenderJob job;
+  job.scene = state.bundle ? bundledSceneOf(state) : sceneFileOf(state);
   job.output = output;
   job.outputs.spectral = spectral;
   checkOutputPath(job);  // the scene and its CSV spectra are inputs too

@@ -127,8 +127,9 @@ class Session {
   void finishWriting() const;
 
   // Develops a (merged) state into `output` on the session's device, as a
-  // render of all its beams would: the scene is its fingerprint's file,
-  // which must still hash the same and compile to the same film.
+  // render of all its beams would: the scene is the state's bundle (or, in
+  // a state without one, its fingerprint's file), which must hash as the
+  // fingerprint says and compile to the same film.
   // `wallSeconds` goes into the header (the time the state took to trace).
   // Throws FilmStateError (bad input) or OutputError.
   RenderResult develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
@@ -151,6 +152,15 @@ BeamRange shardRange(uint64_t firstBeam, uint64_t beams, uint64_t index, uint64_
 FilmFingerprint jobFingerprint(const RenderJob& job);
 // The same for `plan`, the job's scene as a render compiled it.
 FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan);
+// What a state of `scene` carries so that merge and develop need no other
+// file: its sourceText and the files it names (referencedFiles), read now
+// and checked against its digests; none for a scene built in code (no
+// text). Throws FilmStateError when a file cannot be read or has changed
+// since the scene was parsed.
+std::optional<SceneBundle> sceneBundleOf(const Scene& scene);
+// A state's irradiance_per_count: scale.perCount(beams), or 0 for a state
+// of no beams (whose scale is infinite).
+double stateIrradiancePerCount(const IrradianceScale& scale, uint64_t beams);
 
 // The EXR header the renders write (spectrace:beams etc.).
 ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,

@@ -1,7 +1,7 @@
 // libFuzzer target: render-state files (readFilmState). The input is the
 // file without its magic and trailing SHA-256 (version, header length,
-// JSON header, arrays); the target adds both, so the fuzzer reaches the
-// header and arrays instead of failing the checksum. Bad input must end in
+// JSON header, arrays or compressed body); the target adds both, so the
+// fuzzer reaches the header and body instead of failing the checksum. Bad input must end in
 // FilmStateError; an accepted state must be self-consistent.
 #include <cstddef>
 #include <cstdint>

@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   state.ranges = {{0, 10}, {20, 5}};
   state.histogram = SpectralHistogram(f.pixelsX, f.pixelsY, f.bins, f.exactColour, f.weightUnits);
   for (size_t i = 0; i < state.histogram.counts().size(); ++i) state.histogram.counts()[i] = i * 7;
+  // A bundle and a scale, so the fuzzer starts from every part of the format.
+  state.bundle = SceneBundle{"{\"lights\": []}", {{"a.csv", "wavelength_nm,value\n380,1\n"}, {"m.obj", "v 0 0 0\n"}}};
+  state.irradiancePerCount = 1.5e-9;
   const std::filesystem::path full = std::string(argv[1]) + ".full";
   writeFilmState(full, state);
   std::ifstream in(full, std::ios::binary);
