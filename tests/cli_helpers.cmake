@@ -1,6 +1,7 @@
 # Helpers of the CLI test scripts (cli_state.cmake, cli_mpi.cmake,
 # outputs_never_inputs.cmake, resume_refusals.cmake, merge_messages.cmake, resume_rate.cmake,
-# state_refusals.cmake, bench_only_outputs.cmake, batch_state.cmake, cli_set_option.cmake),
+# state_refusals.cmake, bench_only_outputs.cmake, batch_state.cmake, cli_set_option.cmake,
+# referenced_files_changed.cmake, state_bundle.cmake),
 # included by them; COMPARE is tools/exr_pixels_equal.
 
 # Runs a command; fails the test with its output unless it exits 0.
