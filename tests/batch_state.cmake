@@ -2,8 +2,8 @@
 # state patterns, each state merged (`merge`) and resumed (`render
 # --resume`) to the pixels of the job's EXR and of a render of all the
 # beams. A state onto another job's state, the job file or the job's own
-# EXR, or on a job with overrides, is refused (exit 2, naming the line and
-# /state).
+# EXR is refused (exit 2, naming the line and /state); a job with
+# overrides writes a state that merges alone, anywhere.
 #   -DSPECTRACE=path  -DCOMPARE=exr_pixels_equal  -DSCENE=scenes/batch/lamp.json  -DDIR=scratch folder
 include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 file(REMOVE_RECURSE "${DIR}")
@@ -49,8 +49,17 @@ file(WRITE "${DIR}/own_output.jsonl"
   "{\"scene\": \"${SCENE}\", \"output\": \"g.exr\", \"beams\": 1000, \"state\": \"g.exr\"}\n")
 expect_refused(state_onto_own_output "own_output.jsonl:1: /state: state [^\n]*g.exr is also this run's output"
                "${SPECTRACE}" batch "${DIR}/own_output.jsonl" ${quick})
+# A job with "set" writes a state that carries its scene: merged alone in
+# another folder it gives the job's pixels.
 file(WRITE "${DIR}/set.jsonl"
   "{\"scene\": \"${SCENE}\", \"output\": \"f.exr\", \"state\": \"f.state\", \"set\": {\"/lights/0/power_w\": 2}}\n")
-expect_refused(state_with_set "set.jsonl:1: /state: a job with \"set\" cannot write a state"
-               "${SPECTRACE}" batch "${DIR}/set.jsonl" ${quick})
-message(STATUS "batch states merge and resume like render's; clashing states were refused")
+run("${SPECTRACE}" batch "${DIR}/set.jsonl" ${quick})
+file(MAKE_DIRECTORY "${DIR}/elsewhere")
+file(RENAME "${DIR}/f.state" "${DIR}/elsewhere/f.state")
+execute_process(COMMAND "${SPECTRACE}" merge f.state -o f.exr -q --no-png WORKING_DIRECTORY "${DIR}/elsewhere"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the state of a job with \"set\" did not merge alone elsewhere (${rc}): ${err}")
+endif()
+expect_same("${DIR}/elsewhere/f.exr" "${DIR}/f.exr")
+message(STATUS "batch states merge and resume like render's; clashing states were refused; a job with set writes one")

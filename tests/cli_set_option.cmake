@@ -4,8 +4,9 @@
 #   the override; with several scenes each gets it;
 # - each bad form exits 2 naming --set and the pointer, before anything is
 #   traced or written;
-# - --set with --state, --resume, --shard or --mpi is refused (exit 2), and
-#   nothing is written.
+# - --set with --shard and --state: the shards' states, moved to another
+#   folder, merge there (the state carries the overridden scene) into the
+#   pixels of one --set render; a --resume with the same --set goes on.
 # cmake -DSPECTRACE=... -DCOMPARE=... -DSOURCE_DIR=... -DDIR=... -P cli_set_option.cmake
 cmake_minimum_required(VERSION 3.25)
 file(REMOVE_RECURSE ${DIR})
@@ -66,17 +67,25 @@ endforeach()
 expect_refused(repeated "--set /lights/0/power_w=3: /lights/0/power_w is already set by --set /lights/0/power_w=2"
   ${SPECTRACE} render ${lamp} --set /lights/0/power_w=2 --set /lights/0/power_w=3 ${common} -o ${bad}/x.exr)
 
-# States: refused, naming both options, before anything is written.
-set(why "states, shards and MPI ranks' films are joined by their scene file")
-expect_refused(state "--set /lights/0/spd/blackbody_k=4000 cannot be given with --state: ${why}"
-  ${SPECTRACE} render ${lamp} ${to_4000k} ${common} -o ${bad}/x.exr --state ${bad}/x.state)
-expect_refused(resume "cannot be given with --resume: ${why}"
-  ${SPECTRACE} render ${lamp} ${to_4000k} ${common} -o ${bad}/x.exr --resume ${bad}/x.state)
-expect_refused(shard "cannot be given with --shard: ${why}"
-  ${SPECTRACE} render ${lamp} ${to_4000k} ${common} -o ${bad}/x.exr --shard 0/2)
-expect_refused(mpi "cannot be given with --mpi: ${why}"
-  ${SPECTRACE} render ${lamp} ${to_4000k} ${common} -o ${bad}/x.exr --mpi)
 if(EXISTS ${bad})
   message(FATAL_ERROR "a refused render created ${bad}")
 endif()
-message(STATUS "--set renders the edited scene, records it, and refuses bad forms and states")
+
+# States: two shards with --set, merged elsewhere, give the one render's
+# pixels; the state carries the overridden scene, which is in no file.
+foreach(i 0 1)
+  run(${SPECTRACE} render ${lamp} ${to_4000k} ${common} -o ${DIR}/shard${i}.exr --shard ${i}/2 --state ${DIR}/shard${i}.state)
+endforeach()
+file(MAKE_DIRECTORY ${DIR}/elsewhere)
+file(RENAME ${DIR}/shard0.state ${DIR}/elsewhere/a.state)
+file(RENAME ${DIR}/shard1.state ${DIR}/elsewhere/b.state)
+execute_process(COMMAND ${SPECTRACE} merge a.state b.state -o merged.exr -q --no-png --state merged.state
+                WORKING_DIRECTORY ${DIR}/elsewhere RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "merging --set shards failed (${rc}): ${err}")
+endif()
+expect_same(${DIR}/elsewhere/merged.exr ${DIR}/set.exr)
+# A resume needs the same overrides: without them the scene differs.
+expect_refused(resume_without_set "has changed since the state was written|differs"
+  ${SPECTRACE} render ${lamp} ${common} -o ${DIR}/resumed.exr --resume ${DIR}/elsewhere/a.state)
+message(STATUS "--set renders the edited scene, records it, refuses bad forms, and its shards merge anywhere")

@@ -142,23 +142,6 @@ Scene sceneOf(const std::filesystem::path& path, const RenderCommand& command,
   }
 }
 
-// --set with a state, which merge and --resume develop from its scene file
-// (that must hash as it did): the scene --set makes is in no file. A batch
-// job refuses "state" with "set" for the same reason. Refused here alone,
-// before anything is written, so that it is lifted in one place.
-void refuseSetWithStates(const RenderCommand& command) {
-  if (command.overrides.empty()) return;
-  const std::pair<bool, const char*> stateOptions[] = {
-      {command.state.has_value(), "--state"}, {command.resume.has_value(), "--resume"},
-      {command.shard.has_value(), "--shard"}, {command.mpi, "--mpi"}};
-  for (const auto& [given, option] : stateOptions)
-    if (given)
-      throw UsageError(fmt::format("{} cannot be given with {}: states, shards and MPI ranks' films are joined by "
-                                   "their scene file (merge and --resume read it again), and the scene --set makes "
-                                   "is in no file",
-                                   setOptionsText(command), option));
-}
-
 }  // namespace
 
 int runMerge(const MergeCommand& command) {
@@ -241,7 +224,6 @@ std::vector<RenderJob> renderJobsOf(const RenderCommand& command, const std::ato
 }
 
 int runRender(const RenderCommand& command, const std::atomic<bool>& cancel) {
-  refuseSetWithStates(command);
   if (command.mpi) return runMpiRender(command, cancel);
   const bool several = command.scenes.size() > 1;
   std::vector<RenderJob> jobs = renderJobsOf(command, cancel, true);

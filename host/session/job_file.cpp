@@ -156,16 +156,9 @@ LineSpec parseLine(const fs::path& file, size_t number, const std::string& text)
   if (auto* x = jf::find(job, "beams")) spec.beams = jf::getU64(c, *x, "/beams", 1);
   if (auto* x = jf::find(job, "seed")) spec.seed = jf::getU64(c, *x, "/seed", 0);
   if (auto* x = jf::find(job, "output")) spec.outputPattern = jf::getString(c, *x, "/output");
-  if (auto* x = jf::find(job, "state")) {
-    spec.statePattern = jf::getString(c, *x, "/state");
-    // merge and render --resume develop a state from its scene file, which
-    // must hash as it did: a scene changed by the job's overrides is in no file.
-    for (const char* key : {"set", "sweep"})
-      if (jf::find(job, key))
-        c.fail("/state", fmt::format("a job with \"{}\" cannot write a state: merge and render --resume develop a "
-                                     "state from its scene file, and the scene this job renders is in no file",
-                                     key));
-  }
+  // A state carries the scene it was rendered from (overrides applied), so
+  // a job with "set" or "sweep" may write one too.
+  if (auto* x = jf::find(job, "state")) spec.statePattern = jf::getString(c, *x, "/state");
   if (auto* x = jf::find(job, "sweep")) {
     spec.sweep = readSweep(c, *x, text);
     const auto& pattern = spec.outputPattern;

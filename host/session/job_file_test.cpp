@@ -251,8 +251,9 @@ TEST_F(JobFileTest, AStateIsNamedLikeTheOutputAndClaimedOnce) {
   ASSERT_TRUE(entries[5].job) << entries[5].error;  // e.exr beside the state e.state
   EXPECT_NE(entries[6].error.find(":7: /state: {/nothing} names no field of the scene"), std::string::npos)
       << entries[6].error;
-  EXPECT_NE(entries[7].error.find(":8: /state: a job with \"set\" cannot write a state"), std::string::npos)
-      << entries[7].error;
+  // The state carries the scene the job renders, overrides applied.
+  ASSERT_TRUE(entries[7].job) << entries[7].error;
+  EXPECT_EQ(entries[7].job->state, dir / "g.state");
   EXPECT_NE(entries[8].error.find(":9: /state: state \"h\\u0000.state\" holds a NUL"), std::string::npos)
       << entries[8].error;
 }
@@ -263,17 +264,19 @@ TEST_F(JobFileTest, AnOutputOntoAnEarlierStateIsRefused) {
       R"({"scene": "lamp.json", "output": "s.exr"})" "\n"
       R"({"scene": "lamp.json", "output": "b.exr", "state": "t.png"})" "\n"
       R"({"scene": "lamp.json", "output": "t.exr"})" "\n"
-      R"({"scene": "lamp.json", "output": "c.exr", "sweep": {"/lights/0/power_w": [1, 2]}, "state": "c.state"})" "\n");
-  ASSERT_EQ(entries.size(), 5u);
+      R"({"scene": "lamp.json", "output": "c{index}.exr", "sweep": {"/lights/0/power_w": [1, 2]}, "state": "c{index}.state"})" "\n");
+  ASSERT_EQ(entries.size(), 6u);
   ASSERT_TRUE(entries[0].job) << entries[0].error;
   EXPECT_EQ(entries[1].error, jobsFile() + ":2: /output: " + (dir / "s.exr").string() + " is also the state of " +
                                   jobsFile() + ":1");
   ASSERT_TRUE(entries[2].job) << entries[2].error;
   EXPECT_EQ(entries[3].error, jobsFile() + ":4: /output: its PNG preview " + (dir / "t.png").string() +
                                   " is also the state of " + jobsFile() + ":3");
-  // A swept scene is in no file to develop the state from.
-  EXPECT_NE(entries[4].error.find(":5: /state: a job with \"sweep\" cannot write a state"), std::string::npos)
-      << entries[4].error;
+  // A swept scene's state carries the scene it renders: it is written too.
+  ASSERT_TRUE(entries[4].job) << entries[4].error;
+  EXPECT_EQ(entries[4].job->state, dir / "c0.state");
+  ASSERT_TRUE(entries[5].job) << entries[5].error;
+  EXPECT_EQ(entries[5].job->state, dir / "c1.state");
 }
 
 TEST_F(JobFileTest, TheCancelFlagStopsReadingBetweenLines) {
