@@ -18,22 +18,26 @@ macro(render_log name)
   endif()
 endmacro()
 
+# Fails with `what` unless the last log matches `regex`.
+function(expect_log regex what)
+  if(NOT log MATCHES "${regex}")
+    message(FATAL_ERROR "${what}:\n${log}")
+  endif()
+endfunction()
+
 # A second light, "dark", of zero power: never sampled.
 string(REPLACE "\"lights\": [" "\"lights\": [{\"name\": \"dark\", \"type\": \"point\", \"position\": [0, 0, 1], \"power_w\": 0, \"spd\": {\"blackbody_k\": 3000}}," two "${lamp}")
 file(WRITE "${DIR}/two.json" "${two}")
 render_log(two)
-if(NOT log MATCHES "spectrace: note: light \"dark\" \\(/lights/0, point, blackbody 3000 K\\) is never sampled: its power is zero\n(spectrace: [^\n]*\n)*spectrace: 100.0%")
-  message(FATAL_ERROR "no note naming light \"dark\" before the progress line:\n${log}")
-endif()
+expect_log("spectrace: note: light \"dark\" \\(/lights/0, point, blackbody 3000 K\\) is never sampled: its power is zero\n(spectrace: [^\n]*\n)*spectrace: 100.0%"
+           "no note naming light \"dark\" before the progress line")
 
 # The lamp turned away from the camera, behind a grey plate it cannot light.
 string(REPLACE "\"direction\": [-0.05, -0.02, -1.0]" "\"direction\": [0, 0, 1]" away "${lamp}")
 string(REPLACE "\"render\":" "\"objects\": [{\"type\": \"rect\", \"center\": [0, 0, 0.5], \"normal\": [0, 0, -1], \"u_axis\": [1, 0, 0], \"size_m\": [0.2, 0.2], \"material\": {\"type\": \"diffuse\", \"reflectance\": 0.5}}], \"render\":" away "${away}")
 file(WRITE "${DIR}/away.json" "${away}")
 render_log(away)
-if(NOT log MATCHES "spectrace: note: no light can shine on the camera directly \\(light \"lamp\" \\(/lights/0, spot, [^)]*\\): [^)]*\\); only what the objects scatter can reach it\n(spectrace: [^\n]*\n)*spectrace: 100.0%")
-  message(FATAL_ERROR "no note before tracing that no light shines on the camera:\n${log}")
-endif()
-if(NOT log MATCHES "spectrace: warning: no light reached the camera in 200000 beams: the image is black\n")
-  message(FATAL_ERROR "no warning that nothing was counted:\n${log}")
-endif()
+expect_log("spectrace: note: no light can shine on the camera directly \\(light \"lamp\" \\(/lights/0, spot, [^)]*\\): [^)]*\\); only what the objects scatter can reach it\n(spectrace: [^\n]*\n)*spectrace: 100.0%"
+           "no note before tracing that no light shines on the camera")
+expect_log("spectrace: warning: no light reached the camera in 200000 beams: the image is black\n"
+           "no warning that nothing was counted")
