@@ -14,6 +14,7 @@ packages=(
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
   libtinyobjloader-dev                                           # OBJ meshes of scene objects
   libzstd-dev                                                    # compressed render states
+  libembree-dev                                                  # the bench's ray ceiling (optional in CMake)
 )
 # SPECTRACE_VALIDATION=1 and validation_test need the Khronos layer.
 packages+=(vulkan-validationlayers)

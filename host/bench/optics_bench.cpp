@@ -92,28 +92,6 @@ OpticsRow rowOf(const std::string& scene, const std::string& variant, const Rend
   return row;
 }
 
-// A grey sphere lit by a spot that just covers it, through a pinhole: the
-// mesh scene. (Most beams meet the sphere, so the image converges at a
-// rate that shows the mesh's cost, not a light that mostly misses.)
-Scene meshScene(uint64_t triangles) {
-  Scene scene = bareSensorScene(0.024, 0.024, 128, 128, SpectrumRange{}.bins);
-  scene.camera.model = pinholeModel({0.04, 0.001});
-  // At the sphere's centre, 1.04 m away; asin(0.3 / 1.04) = 16.8 degrees: the whole sphere.
-  Light light = surfaceLight(LightType::Spot, {0.6, 0.6, 0.4}, glm::normalize(glm::dvec3(-0.6, -0.6, 0.6)), 10.0,
-                             makeLineSpd(550.0), "550 nm");
-  light.coneHalfAngleDeg = 17.5;
-  scene.lights.push_back(light);
-  SceneObject sphere;
-  sphere.label = "/objects/0";
-  sphere.shape = tessellatedSphere({0.0, 0.0, 1.0}, 0.3, triangles);
-  sphere.material.type = MaterialType::Diffuse;
-  sphere.material.reflectanceNm = {550.0};
-  sphere.material.reflectance = {0.5};
-  scene.objects.push_back(sphere);
-  scene.render.beams = 1'000'000;
-  return scene;
-}
-
 }  // namespace
 
 Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triangles) {
@@ -148,6 +126,28 @@ Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triang
   return shape;
 }
 
+// A grey sphere lit by a spot that just covers it, through a pinhole: the
+// mesh scene. (Most beams meet the sphere, so the image converges at a
+// rate that shows the mesh's cost, not a light that mostly misses.)
+Scene opticsMeshScene(uint64_t triangles) {
+  Scene scene = bareSensorScene(0.024, 0.024, 128, 128, SpectrumRange{}.bins);
+  scene.camera.model = pinholeModel({0.04, 0.001});
+  // At the sphere's centre, 1.04 m away; asin(0.3 / 1.04) = 16.8 degrees: the whole sphere.
+  Light light = surfaceLight(LightType::Spot, {0.6, 0.6, 0.4}, glm::normalize(glm::dvec3(-0.6, -0.6, 0.6)), 10.0,
+                             makeLineSpd(550.0), "550 nm");
+  light.coneHalfAngleDeg = 17.5;
+  scene.lights.push_back(light);
+  SceneObject sphere;
+  sphere.label = "/objects/0";
+  sphere.shape = tessellatedSphere({0.0, 0.0, 1.0}, 0.3, triangles);
+  sphere.material.type = MaterialType::Diffuse;
+  sphere.material.reflectanceNm = {550.0};
+  sphere.material.reflectance = {0.5};
+  scene.objects.push_back(sphere);
+  scene.render.beams = 1'000'000;
+  return scene;
+}
+
 std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& bench) {
   std::vector<OpticsRow> rows;
   auto add = [&](OpticsRow row) {
@@ -176,8 +176,8 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
   // the square covers the central 0.727 of the sensor; its interior, 0.8 of that.
   const std::pair<const char*, uint64_t> matched[] = {{"fom_emitter", 16'777'216}, {"fom_lit_grey", 16'777'216}};
   constexpr double kSquareInterior = 0.8 * (0.6 * 0.024 / 1.1) / 0.018;
-  const Scene mesh = bench.objects ? meshScene(1'000'000) : Scene{};
-  const Scene smallMesh = bench.objects ? meshScene(1'000) : Scene{};
+  const Scene mesh = bench.objects ? opticsMeshScene(1'000'000) : Scene{};
+  const Scene smallMesh = bench.objects ? opticsMeshScene(1'000) : Scene{};
   for (const DeviceSpec& spec : devices) {
     const auto device = Device::open(spec);
     const size_t firstRow = rows.size();

@@ -44,6 +44,11 @@ struct OpticsRow {
 // closed, faces outwards.
 Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triangles);
 
+// The mesh scene: a grey sphere of about `triangles` triangles (radius
+// 0.3 m, 1 m before the camera) lit by a spot that just covers it, seen
+// through a pinhole.
+Scene opticsMeshScene(uint64_t triangles);
+
 struct OpticsBenchOptions {
   std::filesystem::path scenesDir;  // holds prism.json and colorchecker.json
   const std::atomic<bool>* cancel = nullptr;

@@ -116,6 +116,24 @@ void writeCeilingCsv(const std::filesystem::path& file, const std::vector<Ceilin
                        double(r.beams) / r.spectraceSeconds, r.ratio(), r.ceilingHits);
 }
 
+void writeRayCeilingCsv(const std::filesystem::path& file, const std::vector<RayCeilingRow>& rows) {
+  std::ofstream csv(file);
+  csv << "tracer,triangles,rays,threads,seconds,rays_per_s,bytes_per_triangle,spectrace_to_embree,hits,"
+         "hit_miss_disagreements,other_primitive,distance_disagreements\n";
+  for (const auto& r : rows) {
+    auto line = [&](const char* tracer, unsigned threads, double seconds, double bytes, double ratio) {
+      csv << fmt::format("{},{},{},{},{:.6g},{:.6g},{:.1f},{:.4f},{},{},{},{}\n", tracer, r.triangles, r.rays, threads,
+                         seconds, double(r.rays) / seconds, bytes, ratio, r.hits, r.disagreements.hitMiss,
+                         r.disagreements.otherPrimitive, r.disagreements.distance);
+    };
+    line("spectrace", 1, r.spectrace1, r.bytesPerTriangle, 1.0);
+    line("spectrace", r.threads, r.spectraceN, r.bytesPerTriangle, 1.0);
+    if (!r.embree) continue;
+    line("embree", 1, r.embree1, r.embreeBytesPerTriangle, r.ratio1());
+    line("embree", r.threads, r.embreeN, r.embreeBytesPerTriangle, r.ratioN());
+  }
+}
+
 void writeProfileSection(std::ofstream& md, const BenchReport& report) {
   md << "## Profile: where a beam's time goes, and the ceiling\n\n";
   if (!report.profile.empty()) {
@@ -149,6 +167,27 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
       md << fmt::format("| {} | {} | {:.2f} | {:.2f} | {:.3f} |\n", r.deviceName, r.beams,
                         double(r.beams) / r.ceilingSeconds * 1e-6, double(r.beams) / r.spectraceSeconds * 1e-6, r.ratio());
     md << "\n[bench/ceiling.csv](bench/ceiling.csv).\n\n";
+  }
+  for (const auto& r : report.rayCeiling) {
+    md << "### Ray ceiling (Embree)\n\n";
+    md << fmt::format("{} incoherent closest-hit rays (from points around the mesh, each towards a "
+                      "point in a ball about it) through the optics bench's mesh of {} triangles, by the shared "
+                      "kernel's BVH walk (`intersectObjects`, on the CPU) and by Intel Embree {}; wall time, least "
+                      "of 2, same run.\n\n",
+                      r.rays, r.triangles, r.embree ? "(RTC_BUILD_QUALITY_HIGH, rtcIntersect1)" : "(unavailable in this build)");
+    md << "| tracer | threads | Mray/s | bytes/triangle | spectrace : Embree |\n| --- | ---: | ---: | ---: | ---: |\n";
+    const double m = double(r.rays) * 1e-6;
+    md << fmt::format("| spectrace | 1 | {:.3f} | {:.1f} | |\n", m / r.spectrace1, r.bytesPerTriangle);
+    md << fmt::format("| spectrace | {} | {:.3f} | {:.1f} | |\n", r.threads, m / r.spectraceN, r.bytesPerTriangle);
+    if (r.embree) {
+      md << fmt::format("| Embree | 1 | {:.3f} | {:.1f} | {:.3f} |\n", m / r.embree1, r.embreeBytesPerTriangle, r.ratio1());
+      md << fmt::format("| Embree | {} | {:.3f} | {:.1f} | {:.3f} |\n", r.threads, m / r.embreeN, r.embreeBytesPerTriangle,
+                        r.ratioN());
+      md << fmt::format("\n{} of {} rays hit; they disagree on hit or miss for {}, on the primitive for {} (edge "
+                        "ties), on the distance (beyond 1e-5 of it) for {}.\n",
+                        r.hits, r.rays, r.disagreements.hitMiss, r.disagreements.otherPrimitive, r.disagreements.distance);
+    }
+    md << "\n[bench/ray_ceiling.csv](bench/ray_ceiling.csv).\n\n";
   }
 }
 
@@ -206,6 +245,7 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
   if (!report.colour.empty()) writeColourCsv(data / "colour_bins.csv", report.colour);
   if (!report.profile.empty()) writeProfileCsv(data / "profile.csv", report.profile);
   if (!report.ceiling.empty()) writeCeilingCsv(data / "ceiling.csv", report.ceiling);
+  if (!report.rayCeiling.empty()) writeRayCeilingCsv(data / "ray_ceiling.csv", report.rayCeiling);
   if (!report.aim.empty()) {
     std::vector<SweepRow> aimRows;
     for (const auto& a : report.aim) aimRows.insert(aimRows.end(), {a.aimed, a.analog});
@@ -260,7 +300,7 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
     md << "\n";
   }
 
-  if (!report.profile.empty() || !report.ceiling.empty()) writeProfileSection(md, report);
+  if (!report.profile.empty() || !report.ceiling.empty() || !report.rayCeiling.empty()) writeProfileSection(md, report);
 
   if (!report.specialisation.empty()) {
     md << "## Pipelines specialised to the scene\n\n";

@@ -7,6 +7,7 @@
 
 #include "bench/error_bench.h"
 #include "bench/optics_bench.h"
+#include "bench/ray_ceiling.h"
 
 namespace spectrace {
 
@@ -128,6 +129,7 @@ struct BenchReport {
   std::vector<BatchOverheadRow> batchOverhead;
   std::vector<ProfileRow> profile;
   std::vector<CeilingRow> ceiling;
+  std::vector<RayCeilingRow> rayCeiling;  // at most one: the CPU's
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
   std::vector<OpticsRow> optics;

@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/ray_ceiling.h"
 #include "bench/throughput_ceiling.h"
 #include "bench/error_bench.h"
 #include "bench/report.h"
@@ -204,6 +205,40 @@ std::vector<CeilingRow> runCeiling(const BenchCommand& command, const std::vecto
     rows.push_back(row);
   }
   return rows;
+}
+
+// Closest-hit rays through the optics bench's million-triangle mesh, by the
+// shared kernel's BVH walk and by Embree (bench/ray_ceiling.h), on the CPU.
+// 2^20 rays; with --profile-beams under that (quick checks), that many
+// rays through a 1,000-triangle mesh.
+RayCeilingRow runRayCeilingSection(const BenchCommand& command, const std::atomic<bool>& cancel) {
+  const bool full = command.profileBeams >= (uint64_t(1) << 20);
+  const uint64_t rays = full ? uint64_t(1) << 20 : command.profileBeams;
+  const uint64_t triangles = full ? 1'000'000 : 1'000;
+  const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
+  fmt::print("\nRay ceiling: {} incoherent closest-hit rays through a mesh of {} triangles, spectrace's BVH "
+             "(shared kernel, CPU) against Embree, 1 and {} threads (wall time, least of 2)\n",
+             rays, triangles, threads);
+  const RayCeilingRow r = runRayCeiling(triangles, rays, threads, cancel);
+  const double m = double(r.rays) * 1e-6;
+  fmt::print("{:<10} {:>10} {:>8} {:>14} {:>14} {:>16}\n", "tracer", "triangles", "threads", "Mray/s", "bytes/triangle",
+             "spectrace : Embree");
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}\n", "spectrace", r.triangles, 1, m / r.spectrace1, r.bytesPerTriangle);
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}\n", "spectrace", r.triangles, r.threads, m / r.spectraceN,
+             r.bytesPerTriangle);
+  if (!r.embree) {
+    fmt::print("Embree: unavailable (built without it: install libembree-dev, configure with -DSPECTRACE_EMBREE=ON)\n");
+    return r;
+  }
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f} {:>16.3f}\n", "Embree", r.triangles, 1, m / r.embree1,
+             r.embreeBytesPerTriangle, r.ratio1());
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f} {:>16.3f}\n", "Embree", r.triangles, r.threads, m / r.embreeN,
+             r.embreeBytesPerTriangle, r.ratioN());
+  const HitComparison& d = r.disagreements;
+  fmt::print("{} of {} rays hit; disagreements: hit/miss {}, other primitive {}, distance beyond 1e-5 relative {}; "
+             "largest relative distance difference on the same primitive {:.2g}; Embree build {:.2f} s\n",
+             r.hits, r.rays, d.hitMiss, d.otherPrimitive, d.distance, d.largestRelativeDistance, r.embreeBuildSeconds);
+  return r;
 }
 
 // General against specialised trace pipelines, device time, same run.
@@ -580,6 +615,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   if (command.batch && command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
   if (command.profile) report.profile = runProfile(command, report.devices, cancel);
   if (command.ceiling) report.ceiling = runCeiling(command, report.devices, cancel);
+  if (command.ceiling && !cancel.load()) report.rayCeiling.push_back(runRayCeilingSection(command, cancel));
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);
