@@ -48,7 +48,7 @@ void expectCentroidHits(const RayCeilingGeometry& geometry, const CentroidRays& 
   }
 }
 
-TEST(BenchRayCeiling, SpectraceMeetsEachCentroidsTriangle) {
+TEST(BvhAgainstEmbree, SpectraceMeetsEachCentroidsTriangle) {
   const RayCeilingGeometry geometry = meshCeilingGeometry(1000);
   ASSERT_GT(geometry.primitives.size(), 900u);
   const CentroidRays rays = centroidRays(geometry);
@@ -58,7 +58,7 @@ TEST(BenchRayCeiling, SpectraceMeetsEachCentroidsTriangle) {
   expectCentroidHits(geometry, rays, in, out, "spectrace");
 }
 
-TEST(BenchRayCeiling, EmbreeAgreesOnCentroidAndIncoherentRays) {
+TEST(BvhAgainstEmbree, EmbreeAgreesOnCentroidAndIncoherentRays) {
   if (!embreeAvailable()) GTEST_SKIP() << "built without Embree";
   const RayCeilingGeometry geometry = meshCeilingGeometry(1000);
   const EmbreeScene embree(geometry, 2);
