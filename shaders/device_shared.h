@@ -131,7 +131,10 @@ START_BINDING(ProfileStage)
   kProfileStageSensor = 4,     // + sensor intersection
   kProfileStageCounting = 5,   // + the bin's counter (exact colour off)
   kProfileStageColour = 6,     // + exact colour
-  kProfileStageFull = 7        // the whole kernel: + aiming and weights
+  kProfileStageFull = 7,       // the whole kernel: + aiming and weights
+  // Scenes with objects (light paths): after the emission stage,
+  kProfileStageObjectsFirstHit = 8,      // the kernel's emission and its first object hit, nothing counted
+  kProfileStageObjectsNoConnection = 9   // the whole kernel without camera connections (constants.connect = 0)
 END_BINDING();
 // A beam record of a beam that missed the sensor.
 SPECTRACE_CONSTANT uint kBeamMissed = 0xFFFFFFFFu;

@@ -19,11 +19,33 @@ FN bool profileKeep(uint hash) {
   return false;
 }
 
+// The objects profile's first stage: traceLightPath up to transportBeam's
+// first intersectObjects, emission aimed as the kernel aims it, so the
+// next stage (the whole kernel, no connections) adds the rest of the path.
+FN bool profileFirstHit(uint64_t beamIndex) {
+  LightRecord light = readLight(chooseLight(constants.seed, beamIndex, kRngBlockLight));
+  uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
+  vec3 origin;
+  vec3 direction;
+  float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
+                              uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
+  uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
+  PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
+                                          constants.wavelengthsPerPath);
+  ObjectHit hit;
+  bool met = intersectObjects(origin, direction, 3.0e38f, false, hit);
+  uint hash = profileMix(floatBitsToUint(ratio) ^ spectral.w, floatBitsToUint(w.lambda[0]) ^ w.bin[0]);
+  hash = profileMix(hash, met ? floatBitsToUint(hit.t) ^ hit.primitive : 1u);
+  return profileKeep(hash);
+}
+
 // Beam `beamIndex` through the kernel up to and including `stage`. Returns
 // whether it was counted (only stages from kProfileStageCounting count).
 // Stages up to kProfileStageColour emit unaimed beams with unit weight;
 // kProfileStageCounting assumes the tracer switched exact colour off.
 FN bool profileBeam(uint64_t beamIndex, uint stage) {
+  if (stage == kProfileStageObjectsFirstHit) return profileFirstHit(beamIndex);
+  // The tracer switched connections off for the no-connection stage.
   if (stage >= kProfileStageFull) return traceAndCountBeam(beamIndex);
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);

@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "backend/cpu_tracer.h"
 #include "backend/vulkan_tracer.h"
+#include "bench/optics_bench.h"
 #include "bench/throughput_ceiling.h"
 #include "compile/compile_scene.h"
 #include "render/renderer.h"
@@ -106,6 +108,42 @@ TEST(Profile, EveryStageRunsOnBothDevicesAlike) {
     if (stage >= device::kProfileStageColour) {
       EXPECT_EQ(cpu.colourSums(), full.colourSums()) << what;
     }
+  }
+}
+
+// The objects stages, on a small mesh scene (light paths), on both devices:
+// the first-hit stage counts nothing, and the no-connection stage is the
+// whole kernel with the plan's connections switched off (the film's layout
+// kept: compiled without connections, the film would count in other units)
+// and counts fewer beams than the full kernel.
+TEST(Profile, ObjectsStagesCutTheKernelAmongObjects) {
+  CompileOptions options;
+  options.cameraPaths = false;
+  const CompiledScene plan = compileScene(opticsMeshScene(1'000), 7, options);
+  ASSERT_EQ(plan.device.constants.connect, 1u);
+  CompiledScene unconnected = plan;
+  unconnected.device.constants.connect = 0;
+  auto cpuTrace = [](const CompiledScene& p, uint32_t stage) {
+    CpuTracer tracer(p, 2, stage);
+    tracer.trace(0, kBeams);
+    return tracer.download();
+  };
+  auto gpuTrace = [](const CompiledScene& p, uint32_t stage) {
+    VulkanTracer tracer(testing::sharedVulkan(), p, 64, kSpecialiseAll, nullptr, stage);
+    tracer.trace(0, kBeams);
+    return tracer.download();
+  };
+  for (bool gpu : {false, true}) {
+    const auto trace = gpu ? std::function(gpuTrace) : std::function(cpuTrace);
+    const std::string what = gpu ? "gpu" : "cpu";
+    const SpectralHistogram full = trace(plan, device::kProfileStageFull);
+    EXPECT_GT(full.countedBeams, 1000u) << what;
+    const SpectralHistogram firstHit = trace(plan, device::kProfileStageObjectsFirstHit);
+    EXPECT_EQ(std::accumulate(firstHit.counts().begin(), firstHit.counts().end(), uint64_t(0)), 0u) << what;
+    EXPECT_EQ(firstHit.countedBeams, 0u) << what;
+    const SpectralHistogram noConnection = trace(plan, device::kProfileStageObjectsNoConnection);
+    expectSameHistogram(noConnection, trace(unconnected, device::kProfileStageFull), what + " no-connection stage");
+    EXPECT_LT(noConnection.countedBeams, full.countedBeams) << what;
   }
 }
 

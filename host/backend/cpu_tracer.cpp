@@ -151,7 +151,7 @@ std::optional<CpuCode> cpuCodeNamed(std::string_view name) {
 CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage, CpuCode code)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
-      profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageFull)),
+      profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageObjectsNoConnection)),
       code_(code),
       counters_(plan.film.storedCounterCount()) {  // zero, untouched (HugePageAllocator)
   if (!cpuRuns(code))
@@ -160,6 +160,7 @@ CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profi
   plan_.device.constants.pixelsPerChunk = uint32_t(std::max<uint64_t>(1, plan.film.storedPixelCount()));
   // The profile's counting stage counts bins only (shaders/profile.h).
   if (profileStage_ <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
+  if (profileStage_ == device::kProfileStageObjectsNoConnection) plan_.device.constants.connect = 0;
 }
 
 std::string CpuTracer::deviceName() const {

@@ -136,7 +136,7 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
                                          ? 0u
                                          : pick(kSpecialiseExactColour, plan.film.exactColour ? 1u : 0u, 2u)},
           {device::kSpecAim, pick(kSpecialiseAim, aimed ? 1u : 0u, 2u)},
-          {device::kSpecProfileStage, std::min<uint32_t>(profileStage, device::kProfileStageFull)},
+          {device::kSpecProfileStage, std::min<uint32_t>(profileStage, device::kProfileStageObjectsNoConnection)},
           {device::kSpecUniformTables, tables.inUniform ? 1u : 0u},
           {device::kSpecUniformLights, tables.lights},
           {device::kSpecUniformIntervals, tables.intervals},
@@ -287,6 +287,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       timestamps_(context, 2) {
   plan_.device.constants.pixelsPerChunk = split_.pixelsPerChunk;
   if (profileStage <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
+  if (profileStage == device::kProfileStageObjectsNoConnection) plan_.device.constants.connect = 0;
   traceConstants_.upload(&plan_.device.constants, sizeof(plan_.device.constants));
   firstClear_.get();  // rethrows the clear's failure
   bindTraceBuffers(tracePipeline_, unusedBeamRecords_);
