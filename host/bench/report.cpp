@@ -106,6 +106,20 @@ void writeProfileCsv(const std::filesystem::path& file, const std::vector<Profil
   }
 }
 
+void writeObjectsProfileCsv(const std::filesystem::path& file, const std::vector<ObjectsProfileRow>& rows) {
+  std::ofstream csv(file);
+  csv << "device,device_name,beams,triangles,stage,stage_name,seconds,ns_per_beam,increment_ns_per_beam,share_of_full\n";
+  for (const auto& r : rows) {
+    const double full = r.nsPerBeam(r.stageSeconds.size() - 1);
+    for (size_t s = 0; s < r.stageSeconds.size(); ++s) {
+      const double increment = r.nsPerBeam(s) - (s ? r.nsPerBeam(s - 1) : 0.0);
+      csv << fmt::format("{},\"{}\",{},{},{},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g}\n", deviceKindName(r.device),
+                         r.deviceName, r.beams, r.triangles, kObjectsProfileStages[s], kObjectsProfileStageNames[s],
+                         r.stageSeconds[s], r.nsPerBeam(s), increment, increment / full);
+    }
+  }
+}
+
 void writeCeilingCsv(const std::filesystem::path& file, const std::vector<CeilingRow>& rows) {
   std::ofstream csv(file);
   csv << "device,device_name,beams,ceiling_s,spectrace_s,ceiling_beams_per_s,spectrace_beams_per_s,spectrace_to_ceiling,"
@@ -155,6 +169,24 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
       md << "\n";
     }
     md << "All rows: [bench/profile.csv](bench/profile.csv).\n\n";
+  }
+  if (!report.objectsProfile.empty()) {
+    md << "### Objects profile\n\nThe optics bench's mesh scene (a grey diffuse sphere lit by a spot, through a "
+          "pinhole), light paths only, with the kernel cut after emission, after the beam's first object hit, and "
+          "without camera connections, then whole: each row adds what it names to the one before. The scene is "
+          "compiled once, so no row includes building the BVH. Timed as above.\n\n";
+    for (const auto& r : report.objectsProfile) {
+      const double full = r.nsPerBeam(r.stageSeconds.size() - 1);
+      md << fmt::format("{} ({} triangles, {} beams per stage):\n\n", r.deviceName, r.triangles, r.beams);
+      md << "| stage | ns/beam | increment ns/beam | share of full |\n| --- | ---: | ---: | ---: |\n";
+      for (size_t s = 0; s < r.stageSeconds.size(); ++s) {
+        const double increment = r.nsPerBeam(s) - (s ? r.nsPerBeam(s - 1) : 0.0);
+        md << fmt::format("| {} | {:.2f} | {:+.2f} | {:.1f}% |\n", kObjectsProfileStageNames[s], r.nsPerBeam(s),
+                          increment, 100.0 * increment / full);
+      }
+      md << "\n";
+    }
+    md << "All rows: [bench/objects_profile.csv](bench/objects_profile.csv).\n\n";
   }
   if (!report.ceiling.empty()) {
     md << "The ceiling: the same scene's work with no exactness guarantees (`shaders/ceiling.comp` on Vulkan, "
@@ -244,6 +276,8 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
   if (!report.sweep.empty()) writeSweepCsv(data / "error_sweep.csv", report.sweep);
   if (!report.colour.empty()) writeColourCsv(data / "colour_bins.csv", report.colour);
   if (!report.profile.empty()) writeProfileCsv(data / "profile.csv", report.profile);
+  if (!report.objectsProfile.empty())
+    writeObjectsProfileCsv(data / "objects_profile.csv", report.objectsProfile);
   if (!report.ceiling.empty()) writeCeilingCsv(data / "ceiling.csv", report.ceiling);
   if (!report.rayCeiling.empty()) writeRayCeilingCsv(data / "ray_ceiling.csv", report.rayCeiling);
   if (!report.aim.empty()) {
@@ -300,7 +334,7 @@ void writeBenchReport(const std::filesystem::path& dir, const BenchReport& repor
     md << "\n";
   }
 
-  if (!report.profile.empty() || !report.ceiling.empty() || !report.rayCeiling.empty()) writeProfileSection(md, report);
+  if (!report.profile.empty() || !report.objectsProfile.empty() || !report.ceiling.empty() || !report.rayCeiling.empty()) writeProfileSection(md, report);
 
   if (!report.specialisation.empty()) {
     md << "## Pipelines specialised to the scene\n\n";

@@ -105,6 +105,27 @@ inline const char* const kProfileStageNames[] = {"Philox",
                                                  "+ aiming and weights (full kernel, per-beam colour)",
                                                  "default: full kernel, colour from bins"};
 
+// The same on the optics bench's mesh scene (light paths only): the
+// emission stage, then the stages of a beam among objects.
+struct ObjectsProfileRow {
+  DeviceKind device = DeviceKind::Cpu;
+  std::string deviceName;
+  uint64_t beams = 0;
+  uint64_t triangles = 0;
+  std::vector<double> stageSeconds;  // one per kObjectsProfileStages entry, in order
+  double nsPerBeam(size_t stage) const { return stageSeconds[stage] / double(beams) * 1e9; }
+};
+inline constexpr uint32_t kObjectsProfileStages[] = {device::kProfileStageEmission,
+                                                     device::kProfileStageObjectsFirstHit,
+                                                     device::kProfileStageObjectsNoConnection,
+                                                     device::kProfileStageFull};
+// Each names what it adds to the one before.
+inline const char* const kObjectsProfileStageNames[] = {
+    "emission (Philox, light, wavelength, origin and direction)",
+    "+ first object hit (BVH traversal, primitive tests)",
+    "+ camera test, material, later bounces, counting (no connection)",
+    "+ camera connection (shadow ray, its count): full kernel"};
+
 // spectrace's full kernel (exact colour on) against the ceiling kernel
 // (backend/ceiling.h) on the throughput scene, one device, same run and measure.
 struct CeilingRow {
@@ -128,6 +149,7 @@ struct BenchReport {
   std::vector<BatchProcessRow> batchProcesses;
   std::vector<BatchOverheadRow> batchOverhead;
   std::vector<ProfileRow> profile;
+  std::vector<ObjectsProfileRow> objectsProfile;
   std::vector<CeilingRow> ceiling;
   std::vector<RayCeilingRow> rayCeiling;  // at most one: the CPU's
   std::vector<SweepRow> sweep;

@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/optics_bench.h"
 #include "bench/ray_ceiling.h"
 #include "bench/throughput_ceiling.h"
 #include "bench/error_bench.h"
@@ -167,6 +168,49 @@ std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vecto
     for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
       const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
       fmt::print("{:<36} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", kProfileStageNames[s], row.nsPerBeam(s), increment,
+                 100.0 * increment / full);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The profile's objects stages (kObjectsProfileStages) on the optics
+// bench's mesh scene, light paths only, on every device. The scene is
+// compiled once: a render of the scene would rebuild its BVH each time.
+// Fewer beams than the throughput profile (a beam among objects costs more).
+std::vector<ObjectsProfileRow> runObjectsProfile(const BenchCommand& command, const std::vector<DeviceSpec>& devices,
+                                                 const std::atomic<bool>& cancel) {
+  constexpr uint64_t kTriangles = 100'000;
+  const Scene scene = opticsMeshScene(kTriangles);
+  RenderOptions base;
+  base.beams = std::max<uint64_t>(command.profileBeams / 16, 1);
+  base.loop.cancel = &cancel;
+  base.plan.cameraPaths = false;
+  base.tracer.cpuThreads = command.threads;
+  const CompiledScene plan = compileScene(scene, base.seed, base.plan);
+  std::vector<ObjectsProfileRow> rows;
+  fmt::print("\nObjects profile: the kernel cut after each stage, mesh scene ({} triangles, light paths), {} beams "
+             "per stage (device time on Vulkan, wall time on the CPU; least of {})\n",
+             plan.device.primitives.size(), base.beams, kTimingRounds);
+  for (const auto& device : devices) {
+    const auto opened = Device::open(device);
+    ObjectsProfileRow row{device.kind(), device.name(), base.beams, plan.device.primitives.size(), {}};
+    const auto best = interleavedBest(std::size(kObjectsProfileStages), kTimingRounds, [&](size_t stage) {
+      RenderOptions options = base;
+      options.tracer.profileStage = kObjectsProfileStages[stage];
+      RenderOptions warm = options;  // pipeline compilation out of the measured render (timedRender)
+      warm.beams = std::min<uint64_t>(options.beams, uint64_t(1) << 12);
+      render(scene, plan, warm, *opened);
+      return render(scene, plan, options, *opened);
+    });
+    for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.capabilities));
+    fmt::print("{}\n{:<66} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", "ns/beam", "increment ns/beam",
+               "share of full");
+    const double full = row.nsPerBeam(row.stageSeconds.size() - 1);
+    for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
+      const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
+      fmt::print("{:<66} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", kObjectsProfileStageNames[s], row.nsPerBeam(s), increment,
                  100.0 * increment / full);
     }
     rows.push_back(row);
@@ -614,6 +658,7 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   }
   if (command.batch && command.pipelineCache) report.pipelineCache = runPipelineCacheStudy(report.devices, cancel);
   if (command.profile) report.profile = runProfile(command, report.devices, cancel);
+  if (command.profile && !cancel.load()) report.objectsProfile = runObjectsProfile(command, report.devices, cancel);
   if (command.ceiling) report.ceiling = runCeiling(command, report.devices, cancel);
   if (command.ceiling && !cancel.load()) report.rayCeiling.push_back(runRayCeilingSection(command, cancel));
   if (command.sweep) {

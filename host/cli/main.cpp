@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
       ->type_name("LIST");
   benchCmd->add_option_function<std::string>(
       "--profile-beams", [&](const std::string& v) { bench.profileBeams = parseU64("--profile-beams", v, 1); },
-      "Beams per stage and device in the profile and ceiling sections (under 2^20, also the ray ceiling's "
-      "rays, then through a 1,000-triangle mesh)")
+      "Beams per stage and device in the profile and ceiling sections (a sixteenth of them in the objects "
+      "profile; under 2^20, also the ray ceiling's rays, then through a 1,000-triangle mesh)")
       ->type_name("COUNT")
       ->default_str(std::to_string(bench.profileBeams));
 
