@@ -552,7 +552,8 @@ TEST(FilmState, VersionFourCarriesTheBundleAndScaleBitForBit) {
   SceneBundle bundle;
   bundle.sceneText = "{\"lights\": []}\n";
   bundle.files["spd/lamp.csv"] = "wavelength_nm,value\n380,1\n";
-  bundle.files["models/cube.obj"] = std::string("v 0 0 0\n\0\xff\x80 not UTF-8", 23);
+  static constexpr char kBinary[] = "v 0 0 0\n\0\xff\x80 not UTF-8";  // a NUL and bytes that are not UTF-8
+  bundle.files["models/cube.obj"] = std::string(kBinary, sizeof kBinary - 1);
   state.bundle = bundle;
   state.irradiancePerCount = plan.irradiancePerCount(50'000);
   const fs::path file = tempFile("bundle.state");
@@ -573,7 +574,7 @@ TEST(FilmState, VersionFourCarriesTheBundleAndScaleBitForBit) {
   EXPECT_EQ(header.at("compression"), "zstd");
   EXPECT_EQ(header.at("bundle").at("scene_bytes"), bundle.sceneText.size());
   EXPECT_EQ(header.at("bundle").at("files").at(0).at("path"), "models/cube.obj");
-  EXPECT_EQ(header.at("bundle").at("files").at(0).at("bytes"), 23);
+  EXPECT_EQ(header.at("bundle").at("files").at(0).at("bytes"), bundle.files.at("models/cube.obj").size());
 }
 
 // An empty 512 x 512 pixel film of 64 bins (128 MiB of counters) is a
