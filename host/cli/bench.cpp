@@ -138,6 +138,19 @@ std::vector<BestTimes> interleavedBest(size_t variants, int rounds, const std::f
 }
 constexpr int kTimingRounds = 3;
 
+// A profile row's table: each stage's ns per beam, its increment over the
+// stage before, and that increment's share of stage `full`.
+template <class Row, class Names>
+void printStageTable(const Row& row, const Names& names, size_t full, int nameWidth) {
+  fmt::print("{}\n{:<{}} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", nameWidth, "ns/beam", "increment ns/beam",
+             "share of full");
+  for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
+    const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
+    fmt::print("{:<{}} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", names[s], nameWidth, row.nsPerBeam(s), increment,
+               100.0 * increment / row.nsPerBeam(full));
+  }
+}
+
 // The kernel's cost by stage on the throughput scene (shaders/profile.h),
 // on every device: each stage's time, its increment and share of the full
 // kernel's.
@@ -163,13 +176,7 @@ std::vector<ProfileRow> runProfile(const BenchCommand& command, const std::vecto
       });
     });
     for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.capabilities));
-    fmt::print("{}\n{:<36} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", "ns/beam", "increment ns/beam", "share of full");
-    const double full = row.nsPerBeam(device::kProfileStageFull);
-    for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
-      const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
-      fmt::print("{:<36} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", kProfileStageNames[s], row.nsPerBeam(s), increment,
-                 100.0 * increment / full);
-    }
+    printStageTable(row, kProfileStageNames, device::kProfileStageFull, 36);
     rows.push_back(row);
   }
   return rows;
@@ -205,14 +212,7 @@ std::vector<ObjectsProfileRow> runObjectsProfile(const BenchCommand& command, co
       return render(scene, plan, options, *opened);
     });
     for (const auto& b : best) row.stageSeconds.push_back(b.traceSecondsOn(device.capabilities));
-    fmt::print("{}\n{:<66} {:>10} {:>18} {:>14}\n", row.deviceName, "stage", "ns/beam", "increment ns/beam",
-               "share of full");
-    const double full = row.nsPerBeam(row.stageSeconds.size() - 1);
-    for (size_t s = 0; s < row.stageSeconds.size(); ++s) {
-      const double increment = row.nsPerBeam(s) - (s ? row.nsPerBeam(s - 1) : 0.0);
-      fmt::print("{:<66} {:>10.2f} {:>+18.2f} {:>13.1f}%\n", kObjectsProfileStageNames[s], row.nsPerBeam(s), increment,
-                 100.0 * increment / full);
-    }
+    printStageTable(row, kObjectsProfileStageNames, row.stageSeconds.size() - 1, 66);
     rows.push_back(row);
   }
   return rows;
