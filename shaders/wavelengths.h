@@ -75,10 +75,16 @@ FN PathWavelengths drawPathWavelengths(LightRecord light, uint64_t intervalUnifo
 
 // A wavelength-dependent event (a dispersive surface) keeps the hero only:
 // with the others ended, the hero alone is a draw from the light's table,
-// so its share is k times its 1/k (exact: k is a power of two).
+// so its share is k times its 1/k (exact: k is a power of two). Once only:
+// the ended wavelengths are marked by lambda 0 (no light emits there), so
+// a later dispersive surface (a prism's second face) leaves the share be.
 FN void keepHeroOnly(INOUT(PathWavelengths) w, uint k) {
+  if (w.lambda[1] == 0.0f) return;
   PRECISE float hero = w.share[0] * float(k);
-  for (uint j = 1u; j < kMaxWavelengthsPerPath; ++j) w.share[j] = 0.0f;
+  for (uint j = 1u; j < kMaxWavelengthsPerPath; ++j) {
+    w.share[j] = 0.0f;
+    w.lambda[j] = 0.0f;
+  }
   w.share[0] = hero;
 }
 

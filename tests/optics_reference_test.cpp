@@ -38,6 +38,7 @@
 #include "compile/compile_scene.h"
 #include "kernel/beam_kernel.h"
 #include "render/renderer.h"
+#include "spectrum/glass.h"
 #include "support/object_scenes.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
@@ -965,6 +966,45 @@ TEST_P(OpticsReference, GlassSlabMeshTransmitsTheFresnelShare) {
   std::printf("  %s slab: transmitted %.5f, expected %.5f (R = %.4f), %+.1f sigma\n", name(), share, expected, r,
               (share - expected) / sigma);
   EXPECT_NEAR(share, expected, 5.0 * sigma);
+}
+
+// The same slab of dispersive N-BK7, with the laser's line at 550 nm, at
+// one, two and four wavelengths a beam. Dispersive glass keeps a beam's
+// hero wavelength alone, its share k times 1/k; the beam crosses two faces
+// (more after internal reflections), and the share must be raised once
+// only: before, each face multiplied it by k again, and the transmitted
+// power came out k times too large. Each beam carries weight 1 or 0 at the
+// sensor, so its share of the power is binomial at every k.
+TEST_P(OpticsReference, DispersiveSlabTransmitsTheFresnelShareAtEveryWavelengthsPerBeam) {
+  constexpr double kPower = 1.0;
+  const SellmeierGlass* glass = glassNamed("N-BK7");
+  ASSERT_NE(glass, nullptr);
+  const double n = sellmeierIndex(glass->b, glass->cUm2, 550.0);
+  Scene scene = testing::bareSensorScene(0.06, 0.06, 6, 6, 4);
+  const glm::dvec3 direction = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));
+  Light laser = testing::surfaceLight(LightType::Laser, toWorld(scene.camera, {-0.02, 0.0, 0.03}),
+                                      testing::directionToWorld(scene.camera, direction), kPower, makeLineSpd(550.0));
+  laser.radiusM = 0.001;
+  scene.lights = {laser};
+  const glm::dvec3 a = toWorld(scene.camera, {-0.04, -0.04, 0.005}), b = toWorld(scene.camera, {0.04, 0.04, 0.015});
+  scene.objects = {testing::namedObject("slab", 0, testing::worldBox(glm::min(a, b), glm::max(a, b)),
+                                        testing::glassMaterial("N-BK7"))};
+
+  const double cosI = std::sqrt(0.5), sinT = std::sqrt(0.5) / n, cosT = std::sqrt(1.0 - sinT * sinT);
+  const double rs = (cosI - n * cosT) / (cosI + n * cosT), rp = (n * cosI - cosT) / (n * cosI + cosT);
+  const double r = 0.5 * (rs * rs + rp * rp);
+  const double expected = (1.0 - r) * (1.0 - r) * (1.0 + r * r + r * r * r * r);
+  constexpr uint64_t kBeams = 200'000;
+  for (uint32_t k : {1u, 2u, 4u}) {
+    scene.render.wavelengthsPerBeam = k;
+    const RenderResult result = renderHere(scene, kBeams, 62);
+    const SpectralHistogram& h = result.histogram;
+    const double share = h.total() / double(h.unitsPerBeam) / double(kBeams);
+    const double sigma = std::sqrt(expected * (1.0 - expected) / double(kBeams));
+    std::printf("  %s N-BK7 slab, k = %u: transmitted %.5f, expected %.5f (n = %.5f, R = %.4f), %+.1f sigma\n",
+                name(), k, share, expected, n, r, (share - expected) / sigma);
+    EXPECT_NEAR(share, expected, 5.0 * sigma) << "k = " << k;  // 5 sigma of the binomial share
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Devices, OpticsReference, ::testing::Values(DeviceChoice::Cpu, DeviceChoice::Gpu),
