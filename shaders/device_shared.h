@@ -15,6 +15,7 @@ using uint = uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
 #define SPECTRACE_CONSTANT constexpr
 #define SPECTRACE_LAYOUT_FN constexpr
 #else
@@ -214,17 +215,31 @@ struct Primitive {
   vec3 c;
   uint padding0;
 };
-// A node of the BVH (pbrt-v4's LinearBVHNode, 32 bytes): bounds rounded
-// outwards to float from double. An interior node's first child follows it;
-// `next` is its second child. A leaf's primitives are [next, next + count).
+// A node of the BVH, four wide (128 bytes): the boxes of up to four
+// children side by side, so that one read tests them all (four lanes of one
+// vector operation on the CPU) and a child the ray misses is never read.
+// Built on the host from a binary tree (host/compile/wide_bvh.h), bounds
+// rounded outwards to float from double. Slot k: count[k] > 0 is a leaf of
+// the primitives [child[k], child[k] + count[k]); count[k] == 0 is the
+// interior node child[k], or an empty slot where child[k] == 0 (the root is
+// nobody's child).
 struct BvhNode {
-  vec3 boundsMin;
-  uint next;
-  vec3 boundsMax;
-  uint countAxis;  // bits 0-15: primitive count (0: interior), bits 16-17: split axis
+  vec4 minX;
+  vec4 maxX;
+  vec4 minY;
+  vec4 maxY;
+  vec4 minZ;
+  vec4 maxZ;
+  uvec4 child;
+  uvec4 count;
 };
-// Traversal's fixed stack; the builder never makes a deeper tree.
-SPECTRACE_CONSTANT uint kBvhStackSize = 32u;
+// The binary builder's depth limit (nodes on a root-to-leaf path); a wide
+// tree made from it is no deeper.
+SPECTRACE_CONSTANT uint kBvhMaxDepth = 32u;
+// Traversal's fixed stack: a wide node pushes at most four children and
+// pops one, so a walk down kBvhMaxDepth levels holds at most 3 per level
+// plus one.
+SPECTRACE_CONSTANT uint kBvhStackSize = 97u;
 SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
 
 // The scene data: one buffer of 32-bit words where a unit (a light, camera
@@ -540,7 +555,7 @@ static_assert(sizeof(TraceConstants) == 176);
 static_assert(offsetof(TraceConstants, cameraParams) == 140);
 static_assert(offsetof(TraceConstants, cameraDataFirst) == 156);
 static_assert(sizeof(Primitive) == 48);
-static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(BvhNode) == 128);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);

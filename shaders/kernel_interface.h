@@ -9,6 +9,10 @@
 //   vec3 readCmf(uint node)                   the observer's CMF table
 //   Primitive readPrimitive(uint primitive)   scene objects (transport.h)
 //   BvhNode readBvhNode(uint node)
+//   void prefetchBvhChild(uint child, uint count)
+//                                             a hint that a BVH node (count
+//                                             0) or a leaf's primitives will
+//                                             be read soon; may do nothing
 //   Material readMaterial(uint material)
 //   uint readSceneWord(uint word)             the scene data (device_shared.h)
 //   void addCount(uint chunk, uint counter, uint64_t amount)
@@ -34,6 +38,7 @@ concept KernelIncluder = requires(K& k, uint32_t i, uint64_t amount) {
   { k.readCmf(i) };
   { k.readPrimitive(i) } -> std::same_as<Primitive>;
   { k.readBvhNode(i) } -> std::same_as<BvhNode>;
+  { k.prefetchBvhChild(i, i) };
   { k.readMaterial(i) } -> std::same_as<Material>;
   { k.readSceneWord(i) } -> std::same_as<uint32_t>;
   { k.addCount(i, i, amount) };
@@ -48,6 +53,7 @@ SpectralInterval readInterval(uint interval);
 vec3 readCmf(uint node);
 Primitive readPrimitive(uint primitive);
 BvhNode readBvhNode(uint node);
+void prefetchBvhChild(uint child, uint count);
 Material readMaterial(uint material);
 uint readSceneWord(uint word);
 void addCount(uint chunk, uint counter, uint64_t amount);

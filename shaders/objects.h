@@ -66,55 +66,106 @@ FN vec3 inverseDirection(vec3 direction) {
   return inverse;
 }
 
-// Whether the ray meets the box before tMax. The far distance is widened by
-// a few ulps (pbrt-v4's 1 + 2 gamma(3)), so rounding never drops a box the
-// ray grazes; visiting more boxes than needed changes no result.
-FN bool rayMeetsBox(vec3 origin, vec3 inverse, vec3 lo, vec3 hi, float tMax) {
-  PRECISE vec3 t0 = (lo - origin) * inverse;
-  PRECISE vec3 t1 = (hi - origin) * inverse;
-  vec3 nearT = min(t0, t1);
-  vec3 farT = max(t0, t1);
-  float enter = max(max(nearT.x, nearT.y), max(nearT.z, 0.0f));
-  PRECISE float leave = min(min(farT.x, farT.y), min(farT.z, tMax)) * 1.0000004f;
-  return enter <= leave;
+// The ray against the four child boxes of a BVH node: child k is met
+// before tMax when enter[k] <= leave[k]. The far distance is widened by a
+// few ulps (pbrt-v4's 1 + 2 gamma(3)), so rounding never drops a box the
+// ray grazes; visiting more boxes than needed changes no result. Four lanes
+// of one vector operation on the CPU, as on lavapipe.
+FN void rayMeetsChildren(vec3 origin, vec3 inverse, BvhNode node, float tMax, OUT(vec4) enter, OUT(vec4) leave) {
+  PRECISE vec4 x0 = (node.minX - vec4(origin.x)) * inverse.x;
+  PRECISE vec4 x1 = (node.maxX - vec4(origin.x)) * inverse.x;
+  PRECISE vec4 y0 = (node.minY - vec4(origin.y)) * inverse.y;
+  PRECISE vec4 y1 = (node.maxY - vec4(origin.y)) * inverse.y;
+  PRECISE vec4 z0 = (node.minZ - vec4(origin.z)) * inverse.z;
+  PRECISE vec4 z1 = (node.maxZ - vec4(origin.z)) * inverse.z;
+  enter = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), vec4(0.0f)));
+  PRECISE vec4 farT = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), vec4(tMax))) * 1.0000004f;
+  leave = farT;
+}
+
+// One compare-exchange of a sorting network: keys i < j end in order; equal
+// keys keep their order.
+FN void sortChildPair(INOUT(vec4) key, INOUT(uvec4) slot, int i, int j) {
+  if (key[j] < key[i]) {
+    float k = key[i];
+    key[i] = key[j];
+    key[j] = k;
+    uint s = slot[i];
+    slot[i] = slot[j];
+    slot[j] = s;
+  }
 }
 
 // The closest primitive the ray meets at a distance in (0, tMax), through
-// the BVH (device_shared.h: BvhNode) with a fixed stack, nearer child first.
-// With anyHit, returns at the first one (visibility tests).
+// the four-wide BVH (device_shared.h: BvhNode) with a fixed stack: the
+// children a node's ray meets are pushed far to near, so the nearest is
+// taken next, and an entry whose box begins beyond the closest hit so far
+// is dropped unread. Of primitives met at the same distance, the lowest
+// index wins, so the hit does not depend on the order of the walk. With
+// anyHit, returns at the first one (visibility tests).
 FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, OUT(ObjectHit) hit) {
   hit.t = tMax;
   hit.primitive = 0u;
   bool found = false;
   vec3 inverse = inverseDirection(direction);
-  uint stack[kBvhStackSize];
+  uint stackChild[kBvhStackSize];
+  uint stackCount[kBvhStackSize];
+  float stackEnter[kBvhStackSize];
   uint depth = 0u;
-  uint node = 0u;
+  uint child = 0u;  // the root
+  uint count = 0u;
   while (true) {
-    BvhNode current = readBvhNode(node);
-    bool descend = rayMeetsBox(origin, inverse, current.boundsMin, current.boundsMax, hit.t);
-    uint count = current.countAxis & 0xFFFFu;
-    if (descend && count > 0u) {
+    if (count > 0u) {
       for (uint i = 0u; i < count; ++i) {
-        float t = intersectPrimitive(origin, direction, readPrimitive(current.next + i));
-        if (t > 0.0f && t < hit.t) {
+        uint primitive = child + i;
+        float t = intersectPrimitive(origin, direction, readPrimitive(primitive));
+        if (t > 0.0f && (t < hit.t || (found && t == hit.t && primitive < hit.primitive))) {
           hit.t = t;
-          hit.primitive = current.next + i;
+          hit.primitive = primitive;
           found = true;
         }
       }
       if (found && anyHit) break;
-    } else if (descend) {
-      uint axis = (current.countAxis >> 16u) & 3u;
-      bool negative = axis == 0u ? direction.x < 0.0f : (axis == 1u ? direction.y < 0.0f : direction.z < 0.0f);
-      stack[depth] = negative ? node + 1u : current.next;
-      depth += 1u;
-      node = negative ? current.next : node + 1u;
-      continue;
+    } else {
+      BvhNode node = readBvhNode(child);
+      vec4 enter;
+      vec4 leave;
+      rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
+      // Children the ray misses (and empty slots) sort last, at 3.4e38
+      // (beyond any reach: tMax is at most 3.0e38); a fixed sorting network puts the rest near to far, without a
+      // branch that differs between a vector's lanes.
+      bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
+      met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
+                  met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
+      vec4 key = vec4(met.x ? enter.x : 3.4e38f, met.y ? enter.y : 3.4e38f, met.z ? enter.z : 3.4e38f,
+                      met.w ? enter.w : 3.4e38f);
+      uvec4 slot = uvec4(0u, 1u, 2u, 3u);
+      sortChildPair(key, slot, 0, 1);
+      sortChildPair(key, slot, 2, 3);
+      sortChildPair(key, slot, 0, 2);
+      sortChildPair(key, slot, 1, 3);
+      sortChildPair(key, slot, 1, 2);
+      // Far to near onto the stack, the nearest on top.
+      for (int k = 3; k >= 0; --k) {
+        if (key[k] == 3.4e38f) continue;
+        stackChild[depth] = node.child[slot[k]];
+        stackCount[depth] = node.count[slot[k]];
+        stackEnter[depth] = key[k];
+        depth += 1u;
+        prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
+      }
     }
-    if (depth == 0u) break;
-    depth -= 1u;
-    node = stack[depth];
+    // The nearest entry that the closest hit so far leaves in reach (with
+    // the box test's widening).
+    PRECISE float reach = hit.t * 1.0000004f;
+    bool next = false;
+    while (depth > 0u && !next) {
+      depth -= 1u;
+      next = stackEnter[depth] <= reach;
+    }
+    if (!next) break;
+    child = stackChild[depth];
+    count = stackCount[depth];
   }
   return found;
 }

@@ -131,6 +131,8 @@ vec3 readCmf(uint i) {
 }
 Primitive readPrimitive(uint i) { return primitives[i]; }
 BvhNode readBvhNode(uint i) { return bvhNodes[i]; }
+// GLSL has no prefetch; a GPU hides latency with other invocations.
+void prefetchBvhChild(uint child, uint count) {}
 Material readMaterial(uint i) { return materials[i]; }
 uint readSceneWord(uint i) { return sceneData[i]; }
 // Constant indices only: no non-uniform descriptor indexing needed. With

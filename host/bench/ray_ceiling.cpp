@@ -14,6 +14,7 @@
 
 #include "bench/optics_bench.h"
 #include "compile/compile_scene.h"
+#include "compile/wide_bvh.h"
 #include "kernel/beam_kernel.h"
 #include "rng/philox.h"
 
@@ -59,8 +60,9 @@ RayCeilingGeometry meshCeilingGeometry(uint64_t triangles) {
 }
 
 std::vector<CeilingRay> incoherentRays(const RayCeilingGeometry& geometry, uint64_t count, uint64_t seed) {
-  const device::BvhNode& root = geometry.nodes.at(0);
-  const glm::dvec3 lo(root.boundsMin), hi(root.boundsMax);
+  glm::vec3 rootLo, rootHi;
+  wideBvhBounds(WideBvh{geometry.nodes, 1}, rootLo, rootHi);
+  const glm::dvec3 lo(rootLo), hi(rootHi);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   std::vector<CeilingRay> rays(count);

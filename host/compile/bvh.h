@@ -1,8 +1,8 @@
 #pragma once
-// The BVH over the scene's primitives, built on the host in double (binned
-// SAH, pbrt-v4 style) and flattened into the kernel's BvhNode layout
-// (shaders/device_shared.h): depth first, the root at 0, float bounds rounded
-// outwards so that each node contains what it holds.
+// The binary BVH over the scene's primitives, built on the host in double
+// (binned SAH, pbrt-v4 style) and flattened depth first, the root at 0,
+// float bounds rounded outwards so that each node contains what it holds.
+// The kernel walks the four-wide tree made from it (compile/wide_bvh.h).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -14,13 +14,23 @@
 
 namespace spectrace {
 
+// A binary node (pbrt-v4's LinearBVHNode): an interior node's first child
+// follows it; `next` is its second child. A leaf's primitives are
+// order[next .. next + count).
+struct BinaryBvhNode {
+  glm::vec3 boundsMin;
+  uint32_t next;
+  glm::vec3 boundsMax;
+  uint32_t countAxis;  // bits 0-15: primitive count (0: interior), bits 16-17: split axis
+};
+
 struct BuiltBvh {
-  std::vector<device::BvhNode> nodes;  // empty for no primitives
+  std::vector<BinaryBvhNode> nodes;  // empty for no primitives
   // order[k]: the input index of the k-th primitive; a leaf holds
   // order[next .. next + count).
   std::vector<uint32_t> order;
   // Nodes on the longest root-to-leaf path (a lone leaf: 1, no nodes: 0);
-  // never more than device::kBvhStackSize, so the kernel's traversal stack
+  // never more than device::kBvhMaxDepth, so the kernel's traversal stack
   // cannot overflow.
   uint32_t depth = 0;
 };

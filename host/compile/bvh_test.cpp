@@ -19,9 +19,9 @@ namespace {
 
 using glm::dvec3;
 
-uint32_t countOf(const device::BvhNode& n) { return n.countAxis & 0xffffu; }
-dvec3 lo(const device::BvhNode& n) { return dvec3(n.boundsMin); }
-dvec3 hi(const device::BvhNode& n) { return dvec3(n.boundsMax); }
+uint32_t countOf(const BinaryBvhNode& n) { return n.countAxis & 0xffffu; }
+dvec3 lo(const BinaryBvhNode& n) { return dvec3(n.boundsMin); }
+dvec3 hi(const BinaryBvhNode& n) { return dvec3(n.boundsMax); }
 bool contains(const dvec3& outerLo, const dvec3& outerHi, const dvec3& innerLo, const dvec3& innerHi) {
   return glm::all(glm::lessThanEqual(outerLo, innerLo)) && glm::all(glm::greaterThanEqual(outerHi, innerHi));
 }
@@ -59,7 +59,7 @@ void checkTree(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds) 
     ASSERT_LT(e.node, bvh.nodes.size());
     ASSERT_EQ(nodeSeen[e.node]++, 0) << "node " << e.node << " reached twice";
     depth = std::max(depth, e.level);
-    const device::BvhNode& node = bvh.nodes[e.node];
+    const BinaryBvhNode& node = bvh.nodes[e.node];
     const uint32_t count = countOf(node);
     if (count == 0) {
       const uint32_t first = e.node + 1, second = node.next;
@@ -87,7 +87,7 @@ void checkTree(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds) 
   EXPECT_TRUE(std::all_of(slotSeen.begin(), slotSeen.end(), [](int s) { return s == 1; }))
       << "leaves do not cover order once";
   EXPECT_EQ(bvh.depth, depth);
-  EXPECT_LE(bvh.depth, device::kBvhStackSize);
+  EXPECT_LE(bvh.depth, device::kBvhMaxDepth);
 }
 
 struct Ray {
@@ -109,11 +109,11 @@ bool hits(const Ray& ray, const dvec3& boxLo, const dvec3& boxHi) {
 std::vector<uint32_t> traverse(const BuiltBvh& bvh, const Ray& ray) {
   std::vector<uint32_t> found;
   if (bvh.nodes.empty()) return found;
-  std::array<uint32_t, device::kBvhStackSize> stack;
+  std::array<uint32_t, device::kBvhMaxDepth> stack;
   uint32_t size = 0;
   uint32_t node = 0;
   while (true) {
-    const device::BvhNode& n = bvh.nodes[node];
+    const BinaryBvhNode& n = bvh.nodes[node];
     if (hits(ray, lo(n), hi(n))) {
       if (countOf(n) == 0) {
         if (size == stack.size()) {
@@ -288,7 +288,7 @@ TEST(Bvh, ExponentiallySpacedPrimitivesStayWithinTheDepthLimit) {
   }
   const BuiltBvh bvh = buildBvh(boxes);
   checkTree(bvh, boxes);
-  EXPECT_LE(bvh.depth, device::kBvhStackSize);
+  EXPECT_LE(bvh.depth, device::kBvhMaxDepth);
 
   // Powers of two over double's whole range: float bounds underflow to 0 and
   // overflow to infinity, and must still contain.
@@ -299,7 +299,7 @@ TEST(Bvh, ExponentiallySpacedPrimitivesStayWithinTheDepthLimit) {
   }
   const BuiltBvh wideBvh = buildBvh(wide);
   checkTree(wideBvh, wide);
-  EXPECT_LE(wideBvh.depth, device::kBvhStackSize);
+  EXPECT_LE(wideBvh.depth, device::kBvhMaxDepth);
 
   // Flat boxes at 2^e: the cheapest SAH split peels off the farthest one,
   // level after level, until the depth limit makes median splits take over.
@@ -310,7 +310,7 @@ TEST(Bvh, ExponentiallySpacedPrimitivesStayWithinTheDepthLimit) {
   }
   const BuiltBvh peeledBvh = buildBvh(peeled);
   checkTree(peeledBvh, peeled);
-  EXPECT_LE(peeledBvh.depth, device::kBvhStackSize);
+  EXPECT_LE(peeledBvh.depth, device::kBvhMaxDepth);
 }
 
 TEST(Bvh, ExponentiallySpacedPrimitivesTraverseLikeBruteForce) {
@@ -321,7 +321,7 @@ TEST(Bvh, ExponentiallySpacedPrimitivesTraverseLikeBruteForce) {
   }
   const BuiltBvh bvh = buildBvh(boxes);
   checkTree(bvh, boxes);
-  EXPECT_LE(bvh.depth, device::kBvhStackSize);
+  EXPECT_LE(bvh.depth, device::kBvhMaxDepth);
   checkTraversal(bvh, boxes, dvec3(0.0), dvec3(100.0, 1.0, 1.0), 5, 500);
 }
 

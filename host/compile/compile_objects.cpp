@@ -9,6 +9,7 @@
 
 #include "camera/camera_frame.h"
 #include "compile/bvh.h"
+#include "compile/wide_bvh.h"
 #include "materials/material_type.h"
 #include "shapes/shape_shared.h"
 #include "shapes/shape_type.h"
@@ -26,24 +27,16 @@ device::Material deviceMaterial(const SurfaceMaterial& material, DeviceScene& de
 
 // Every primitive in one leaf under a root that bounds them all: the
 // kernel then tests each one (the bench's brute force).
-BuiltBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds) {
-  if (bounds.size() > 0xFFFFu) throw std::invalid_argument("brute force: at most 65535 primitives fit one leaf");
+WideBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_t>& order) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  BuiltBvh bvh;
   for (uint32_t i = 0; i < bounds.size(); ++i) {
     lo = glm::min(lo, bounds[i].lo);
     hi = glm::max(hi, bounds[i].hi);
-    bvh.order.push_back(i);
+    order.push_back(i);
   }
   const PrimitiveBounds all = paddedBounds(lo, hi);
-  device::BvhNode root{};
-  root.boundsMin = glm::vec3(all.lo) - glm::vec3(1e-6f);
-  root.boundsMax = glm::vec3(all.hi) + glm::vec3(1e-6f);
-  root.next = 0;
-  root.countAxis = uint32_t(bounds.size());
-  bvh.nodes.push_back(root);
-  bvh.depth = 1;
-  return bvh;
+  return singleLeafBvh(glm::vec3(all.lo) - glm::vec3(1e-6f), glm::vec3(all.hi) + glm::vec3(1e-6f),
+                       uint32_t(bounds.size()));
 }
 
 }  // namespace
@@ -64,10 +57,16 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
   std::vector<PrimitiveBounds> bounds;
   bounds.reserve(placed.size());
   for (const PlacedPrimitive& p : placed) bounds.push_back(p.bounds);
-  BuiltBvh bvh = options.bruteForceObjects ? oneLeaf(bounds) : buildBvh(bounds);
-  device.bvhNodes = std::move(bvh.nodes);
+  std::vector<uint32_t> order;
+  if (options.bruteForceObjects) {
+    device.bvhNodes = oneLeaf(bounds, order).nodes;
+  } else {
+    BuiltBvh binary = buildBvh(bounds);
+    device.bvhNodes = widenBvh(binary).nodes;
+    order = std::move(binary.order);
+  }
   device.primitives.reserve(placed.size());
-  for (uint32_t index : bvh.order) device.primitives.push_back(placed[index].primitive);
+  for (uint32_t index : order) device.primitives.push_back(placed[index].primitive);
   c.objectPrimitives = uint32_t(device.primitives.size());
   c.connect = options.connect && connects ? 1u : 0u;
 }

@@ -129,16 +129,19 @@ TEST(CompiledObjects, EveryPrimitiveOnceInTheBvhAndABoxHoldsEachOne) {
   for (const auto& p : plan.device.primitives) materials.insert(p.material);
   EXPECT_EQ(materials.size(), 40u) << "each object's primitive, once";
   // Each leaf's box holds its spheres' centres.
-  for (const auto& node : plan.device.bvhNodes) {
-    const uint32_t count = node.countAxis & 0xFFFFu;
-    for (uint32_t i = node.next; count > 0 && i < node.next + count; ++i) {
-      const auto& p = plan.device.primitives[i];
-      for (int k = 0; k < 3; ++k) {
-        EXPECT_LE(node.boundsMin[k], p.a[k]);
-        EXPECT_GE(node.boundsMax[k], p.a[k]);
+  for (const auto& node : plan.device.bvhNodes)
+    for (int slot = 0; slot < 4; ++slot) {
+      const uint32_t count = node.count[slot];
+      for (uint32_t i = node.child[slot]; i < node.child[slot] + count; ++i) {
+        const auto& p = plan.device.primitives[i];
+        const glm::vec3 lo(node.minX[slot], node.minY[slot], node.minZ[slot]);
+        const glm::vec3 hi(node.maxX[slot], node.maxY[slot], node.maxZ[slot]);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_LE(lo[k], p.a[k]);
+          EXPECT_GE(hi[k], p.a[k]);
+        }
       }
     }
-  }
 }
 
 TEST(ObjectValidation, AGlassMeshMustFaceOutwards) {

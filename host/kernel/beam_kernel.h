@@ -4,6 +4,7 @@
 // functions over host arrays, with Philox from Random123. The includer
 // contract is shaders/kernel_interface.h; a KernelIncluder concept checks
 // it here. Built with -ffp-contract=off (see host/kernel/CMakeLists.txt).
+#include <algorithm>
 #include <atomic>
 #include <span>
 
@@ -128,6 +129,15 @@ class BeamKernel {
   vec3 readCmf(uint i) const { return cmf[i]; }
   Primitive readPrimitive(uint i) const { return primitives[i]; }
   BvhNode readBvhNode(uint i) const { return bvhNodes[i]; }
+  // A CPU thread has only its own ray to trace, so it waits for each miss
+  // of a tree too large for the caches: the children a ray meets are
+  // requested together, as soon as they are known.
+  void prefetchBvhChild(uint child, uint count) const {
+    const char* first = count == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
+                                   : reinterpret_cast<const char*>(primitives.data() + child);
+    const size_t bytes = count == 0 ? sizeof(BvhNode) : std::min<size_t>(count, 4) * sizeof(Primitive);
+    for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(first + offset);
+  }
   Material readMaterial(uint i) const { return materials[i]; }
   uint32_t readSceneWord(uint i) const { return sceneData[i]; }
   // One chunk on the CPU: `chunk` is always 0. Queued when the caller gave

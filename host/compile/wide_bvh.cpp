@@ -1,0 +1,121 @@
+#include "compile/wide_bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#include <glm/common.hpp>
+
+namespace spectrace {
+namespace {
+
+constexpr uint32_t kWidth = 4;
+
+uint32_t countOf(const BinaryBvhNode& n) { return n.countAxis & 0xFFFFu; }
+
+// Half the surface area, in double so that thin boxes still compare.
+double halfArea(const BinaryBvhNode& n) {
+  const glm::dvec3 e = glm::max(glm::dvec3(n.boundsMax) - glm::dvec3(n.boundsMin), glm::dvec3(0.0));
+  return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+
+void setSlot(device::BvhNode& node, uint32_t k, const glm::vec3& lo, const glm::vec3& hi, uint32_t child,
+             uint32_t count) {
+  node.minX[k] = lo.x;
+  node.minY[k] = lo.y;
+  node.minZ[k] = lo.z;
+  node.maxX[k] = hi.x;
+  node.maxY[k] = hi.y;
+  node.maxZ[k] = hi.z;
+  node.child[k] = child;
+  node.count[k] = count;
+}
+
+class Widener {
+ public:
+  Widener(const BuiltBvh& binary, WideBvh& out) : binary_(binary), out_(out) {}
+
+  // Appends the wide node whose children are those of binary node `index`
+  // (or, for a leaf root, that leaf), then its interior children depth
+  // first; returns its index.
+  uint32_t emit(uint32_t index, uint32_t level) {
+    const uint32_t wideIndex = uint32_t(out_.nodes.size());
+    out_.nodes.push_back(device::BvhNode{});
+    out_.depth = std::max(out_.depth, level);
+    std::array<uint32_t, kWidth> slots{};
+    uint32_t n = 0;
+    const BinaryBvhNode& node = binary_.nodes[index];
+    if (countOf(node) > 0) {
+      slots[n++] = index;
+    } else {
+      slots[n++] = index + 1;
+      slots[n++] = node.next;
+    }
+    // Open the largest interior child (by area, the likeliest to be met)
+    // until the node is full; the first of equals, so the tree is the same
+    // on every machine.
+    while (n < kWidth) {
+      int widest = -1;
+      double widestArea = -1.0;
+      for (uint32_t k = 0; k < n; ++k) {
+        const BinaryBvhNode& c = binary_.nodes[slots[k]];
+        if (countOf(c) == 0 && halfArea(c) > widestArea) {
+          widest = int(k);
+          widestArea = halfArea(c);
+        }
+      }
+      if (widest < 0) break;
+      const uint32_t opened = slots[widest];
+      slots[widest] = opened + 1;
+      slots[n++] = binary_.nodes[opened].next;
+    }
+    for (uint32_t k = 0; k < n; ++k) {
+      const BinaryBvhNode& c = binary_.nodes[slots[k]];
+      const uint32_t count = countOf(c);
+      // Interior children are filled in below, once their index is known.
+      setSlot(out_.nodes[wideIndex], k, c.boundsMin, c.boundsMax, count > 0 ? c.next : 0u, count);
+    }
+    for (uint32_t k = 0; k < n; ++k)
+      if (countOf(binary_.nodes[slots[k]]) == 0) {
+        const uint32_t child = emit(slots[k], level + 1);
+        out_.nodes[wideIndex].child[k] = child;
+      }
+    return wideIndex;
+  }
+
+ private:
+  const BuiltBvh& binary_;
+  WideBvh& out_;
+};
+
+}  // namespace
+
+WideBvh widenBvh(const BuiltBvh& binary) {
+  WideBvh out;
+  if (binary.nodes.empty()) return out;
+  out.nodes.reserve(binary.nodes.size() / 3 + 1);
+  Widener(binary, out).emit(0, 1);
+  return out;
+}
+
+WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) {
+  WideBvh out;
+  out.nodes.push_back(device::BvhNode{});
+  setSlot(out.nodes[0], 0, lo, hi, 0u, count);
+  out.depth = 1;
+  return out;
+}
+
+void wideBvhBounds(const WideBvh& bvh, glm::vec3& lo, glm::vec3& hi) {
+  lo = glm::vec3(std::numeric_limits<float>::infinity());
+  hi = -lo;
+  if (bvh.nodes.empty()) return;
+  const device::BvhNode& root = bvh.nodes[0];
+  for (uint32_t k = 0; k < kWidth; ++k) {
+    if (root.count[k] == 0 && root.child[k] == 0) continue;
+    lo = glm::min(lo, glm::vec3(root.minX[k], root.minY[k], root.minZ[k]));
+    hi = glm::max(hi, glm::vec3(root.maxX[k], root.maxY[k], root.maxZ[k]));
+  }
+}
+
+}  // namespace spectrace

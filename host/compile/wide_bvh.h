@@ -1,0 +1,38 @@
+#pragma once
+// The four-wide BVH the kernel walks (device::BvhNode, shaders/objects.h),
+// made from the binary SAH tree (compile/bvh.h) by collapsing it: each wide
+// node takes a binary node's two children and opens the interior child of
+// largest area until it has four. A wide node then holds the boxes the
+// binary tree would have tested one at a time, and its children are only
+// read when the ray meets their boxes. The leaves and their float bounds
+// are the binary tree's own, so the wide tree contains what it holds.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "compile/bvh.h"
+#include "device_shared.h"
+
+namespace spectrace {
+
+struct WideBvh {
+  std::vector<device::BvhNode> nodes;  // depth first, the root at 0; empty for no primitives
+  // Wide nodes on the longest path from the root (0 for no nodes); never
+  // more than the binary tree's depth, so within device::kBvhMaxDepth and
+  // the kernel's stack (device::kBvhStackSize = 3 kBvhMaxDepth + 1).
+  uint32_t depth = 0;
+};
+
+// The wide tree over `binary`, whose leaves index its primitives in
+// binary.order's order.
+WideBvh widenBvh(const BuiltBvh& binary);
+
+// A root with one leaf: primitives [0, count) in the box [lo, hi] (the
+// bench's brute force; count at most 2^31).
+WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
+
+// The union of the root's child boxes (an empty box, lo > hi, for no nodes).
+void wideBvhBounds(const WideBvh& bvh, glm::vec3& lo, glm::vec3& hi);
+
+}  // namespace spectrace

@@ -1,0 +1,320 @@
+// The four-wide BVH: its layout (every node reached once, leaves covering
+// the primitives once, boxes that contain what they hold, depth within the
+// kernel's stack) and the kernel's walk of it against brute force: the same
+// closest primitive at the same distance, ties at shared edges and vertices
+// included, and the same answer to any-hit queries.
+#include "compile/wide_bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "compile/bvh.h"
+#include "kernel/beam_kernel.h"
+#include "shapes/shape_shared.h"
+
+namespace spectrace {
+namespace {
+
+using glm::dvec3;
+using glm::vec3;
+
+bool emptySlot(const device::BvhNode& n, int k) { return n.count[k] == 0 && n.child[k] == 0; }
+vec3 slotLo(const device::BvhNode& n, int k) { return {n.minX[k], n.minY[k], n.minZ[k]}; }
+vec3 slotHi(const device::BvhNode& n, int k) { return {n.maxX[k], n.maxY[k], n.maxZ[k]}; }
+bool contains(const dvec3& outerLo, const dvec3& outerHi, const dvec3& lo, const dvec3& hi) {
+  return outerLo.x <= lo.x && outerLo.y <= lo.y && outerLo.z <= lo.z && outerHi.x >= hi.x && outerHi.y >= hi.y &&
+         outerHi.z >= hi.z;
+}
+
+// Triangles as the kernel holds them (a vertex and two edges in float) and
+// the padded double boxes of their points, as the mesh unit makes them.
+struct Soup {
+  std::vector<device::Primitive> primitives;
+  std::vector<PrimitiveBounds> bounds;
+  void add(const vec3& v0, const vec3& v1, const vec3& v2) {
+    device::Primitive p{};
+    p.type = device::kPrimitiveTriangle;
+    p.a = v0;
+    p.b = v1 - v0;
+    p.c = v2 - v0;
+    primitives.push_back(p);
+    bounds.push_back(boundsOfPoints({dvec3(p.a), dvec3(p.a) + dvec3(p.b), dvec3(p.a) + dvec3(p.c)}));
+  }
+};
+
+// The kernel's tree over a soup: primitives in the tree's order.
+struct Tree {
+  BuiltBvh binary;
+  WideBvh wide;
+  std::vector<device::Primitive> primitives;
+  std::vector<PrimitiveBounds> bounds;  // in the same order
+};
+
+Tree treeOf(const Soup& soup) {
+  Tree t;
+  t.binary = buildBvh(soup.bounds);
+  t.wide = widenBvh(t.binary);
+  for (uint32_t i : t.binary.order) {
+    t.primitives.push_back(soup.primitives[i]);
+    t.bounds.push_back(soup.bounds[i]);
+  }
+  return t;
+}
+
+// Walks the wide tree and checks what the kernel relies on.
+void checkLayout(const Tree& t) {
+  const auto& nodes = t.wide.nodes;
+  const size_t n = t.primitives.size();
+  ASSERT_FALSE(nodes.empty());
+  std::vector<int> nodeSeen(nodes.size(), 0), primitiveSeen(n, 0);
+  struct Entry {
+    uint32_t node, level;
+    dvec3 lo, hi;  // the parent's slot box (the root: everything)
+  };
+  std::vector<Entry> stack{{0, 1, dvec3(-INFINITY), dvec3(INFINITY)}};
+  uint32_t depth = 0;
+  while (!stack.empty()) {
+    const Entry e = stack.back();
+    stack.pop_back();
+    ASSERT_LT(e.node, nodes.size());
+    ASSERT_EQ(nodeSeen[e.node]++, 0) << "node " << e.node << " reached twice";
+    depth = std::max(depth, e.level);
+    const device::BvhNode& node = nodes[e.node];
+    int used = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (emptySlot(node, k)) continue;
+      ++used;
+      const dvec3 lo(slotLo(node, k)), hi(slotHi(node, k));
+      EXPECT_TRUE(contains(e.lo, e.hi, lo, hi)) << "node " << e.node << " slot " << k << " leaves its parent's box";
+      if (node.count[k] == 0) {
+        ASSERT_GT(node.child[k], e.node) << "children follow their parent";
+        stack.push_back({node.child[k], e.level + 1, lo, hi});
+        continue;
+      }
+      EXPECT_LE(node.count[k], device::kBvhMaxLeafPrimitives);
+      ASSERT_LE(size_t(node.child[k]) + node.count[k], n);
+      for (uint32_t p = node.child[k]; p < node.child[k] + node.count[k]; ++p) {
+        ++primitiveSeen[p];
+        EXPECT_TRUE(contains(lo, hi, t.bounds[p].lo, t.bounds[p].hi)) << "leaf does not contain primitive " << p;
+      }
+    }
+    EXPECT_GE(used, e.node == 0 ? 1 : 2) << "node " << e.node;
+  }
+  EXPECT_TRUE(std::all_of(nodeSeen.begin(), nodeSeen.end(), [](int s) { return s == 1; })) << "unreachable nodes";
+  EXPECT_TRUE(std::all_of(primitiveSeen.begin(), primitiveSeen.end(), [](int s) { return s == 1; }))
+      << "leaves do not cover the primitives once";
+  EXPECT_EQ(t.wide.depth, depth);
+  EXPECT_LE(t.wide.depth, t.binary.depth) << "collapsing never deepens the tree";
+  // Each level below the root leaves at most three siblings on the stack.
+  EXPECT_LE(3 * t.wide.depth + 1, device::kBvhStackSize);
+}
+
+struct KernelHit {
+  bool found = false;
+  uint32_t primitive = 0;
+  float t = 0.0f;
+  bool operator==(const KernelHit&) const = default;
+};
+
+class Walker {
+ public:
+  Walker(const std::vector<device::Primitive>& primitives, const std::vector<device::BvhNode>& nodes)
+      : kernel_(constants(primitives), {}, {}, {}) {
+    kernel_.setObjects(primitives, nodes, {}, {});
+  }
+  KernelHit closest(const vec3& origin, const vec3& direction, float tMax, bool anyHit = false) {
+    device::BeamKernel::ObjectHit hit;
+    KernelHit h;
+    h.found = kernel_.intersectObjects(origin, direction, tMax, anyHit, hit);
+    if (h.found) {
+      h.primitive = hit.primitive;
+      h.t = hit.t;
+    }
+    return h;
+  }
+  // Every primitive, by the kernel's own test: the nearest, the lowest
+  // index among equals.
+  KernelHit bruteForce(const std::vector<device::Primitive>& primitives, const vec3& origin, const vec3& direction,
+                       float tMax, int* atThatDistance = nullptr) {
+    KernelHit h;
+    h.t = tMax;
+    int equal = 0;
+    for (uint32_t i = 0; i < primitives.size(); ++i) {
+      const float t = kernel_.intersectPrimitive(origin, direction, primitives[i]);
+      if (t > 0.0f && t < h.t) {
+        h = {true, i, t};
+        equal = 1;
+      } else if (h.found && t == h.t) {
+        ++equal;
+      }
+    }
+    if (!h.found) h.t = 0.0f;
+    if (atThatDistance) *atThatDistance = equal;
+    return h;
+  }
+
+ private:
+  static device::TraceConstants constants(const std::vector<device::Primitive>& primitives) {
+    device::TraceConstants c{};
+    c.objectPrimitives = uint32_t(primitives.size());
+    return c;
+  }
+  device::BeamKernel kernel_;
+};
+
+vec3 unitVector(std::mt19937_64& rng) {
+  std::normal_distribution<float> normal;
+  vec3 v;
+  do v = vec3(normal(rng), normal(rng), normal(rng));
+  while (glm::length(v) < 1e-3f);
+  return glm::normalize(v);
+}
+
+// Random triangles of many sizes in the unit cube.
+Soup randomSoup(size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  Soup soup;
+  for (size_t i = 0; i < n; ++i) {
+    const vec3 c(unit(rng), unit(rng), unit(rng));
+    const float size = std::pow(10.0f, -3.0f + 2.5f * unit(rng));
+    soup.add(c + size * unitVector(rng), c + size * unitVector(rng), c + size * unitVector(rng));
+  }
+  return soup;
+}
+
+// A height field over [0, 1]^2: cells of two triangles that share edges
+// and vertices with their neighbours.
+Soup heightField(int cells) {
+  auto vertex = [&](int i, int j) {
+    const float x = float(i) / float(cells), y = float(j) / float(cells);
+    return vec3(x, y, 0.1f * std::sin(7.0f * x) * std::cos(5.0f * y));
+  };
+  Soup soup;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      soup.add(vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1));
+      soup.add(vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1));
+    }
+  return soup;
+}
+
+TEST(WideBvh, EmptyBinaryTreeGivesNoNodes) {
+  const WideBvh wide = widenBvh(BuiltBvh{});
+  EXPECT_TRUE(wide.nodes.empty());
+  EXPECT_EQ(wide.depth, 0u);
+}
+
+TEST(WideBvh, OnePrimitiveIsOneLeafUnderTheRoot) {
+  Soup soup;
+  soup.add({0, 0, 1}, {1, 0, 1}, {0, 1, 1});
+  const Tree t = treeOf(soup);
+  ASSERT_EQ(t.wide.nodes.size(), 1u);
+  EXPECT_EQ(t.wide.nodes[0].count[0], 1u);
+  for (int k = 1; k < 4; ++k) EXPECT_TRUE(emptySlot(t.wide.nodes[0], k));
+  checkLayout(t);
+  Walker walker(t.primitives, t.wide.nodes);
+  const KernelHit h = walker.closest({0.25f, 0.25f, 0.0f}, {0, 0, 1}, 1e30f);
+  EXPECT_TRUE(h.found);
+  EXPECT_EQ(h.t, 1.0f);
+}
+
+TEST(WideBvh, LayoutOfRandomTrianglesAndAHeightField) {
+  for (size_t n : {2u, 5u, 17u, 100u, 5000u}) {
+    SCOPED_TRACE(n);
+    checkLayout(treeOf(randomSoup(n, 7 + n)));
+  }
+  checkLayout(treeOf(heightField(64)));
+}
+
+// Most interior nodes are full: the collapse opens children until four.
+TEST(WideBvh, NodesAreMostlyFull) {
+  const Tree t = treeOf(randomSoup(20000, 3));
+  size_t slots = 0;
+  for (const auto& node : t.wide.nodes)
+    for (int k = 0; k < 4; ++k) slots += emptySlot(node, k) ? 0 : 1;
+  const double perNode = double(slots) / double(t.wide.nodes.size());
+  std::printf("  %zu binary nodes, %zu wide nodes, %.2f slots a wide node\n", t.binary.nodes.size(),
+              t.wide.nodes.size(), perNode);
+  EXPECT_GT(perNode, 3.0) << "a node whose children are two leaves has two slots; most have four";
+}
+
+// Rays through random triangles of many sizes, from inside and outside the
+// cube: the walk finds what brute force finds, bit for bit.
+TEST(WideBvh, ClosestHitsOfRandomTrianglesEqualBruteForce) {
+  const Soup soup = randomSoup(3000, 11);
+  const Tree t = treeOf(soup);
+  Walker walker(t.primitives, t.wide.nodes);
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<float> unit(-0.5f, 1.5f);
+  int hits = 0;
+  for (int r = 0; r < 5000; ++r) {
+    const vec3 origin(unit(rng), unit(rng), unit(rng));
+    const vec3 direction = unitVector(rng);
+    const float tMax = r % 4 == 0 ? 0.3f : 1e30f;
+    const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, tMax);
+    ASSERT_EQ(walker.closest(origin, direction, tMax), expected) << "ray " << r;
+    // Any-hit: found exactly when brute force finds a hit before tMax.
+    ASSERT_EQ(walker.closest(origin, direction, tMax, true).found, expected.found) << "ray " << r;
+    hits += expected.found ? 1 : 0;
+  }
+  EXPECT_GT(hits, 500) << "the test must hit often";
+}
+
+// Rays aimed at the height field's shared vertices and edge midpoints, where
+// two to six triangles meet the ray at (nearly) the same distance: the walk
+// picks the one brute force picks (the nearest; among equal distances, the
+// lowest index), whatever order it visits the leaves in.
+TEST(WideBvh, TiesAtSharedEdgesAndVerticesResolveAsBruteForce) {
+  constexpr int kCells = 32;
+  const Soup soup = heightField(kCells);
+  const Tree t = treeOf(soup);
+  Walker walker(t.primitives, t.wide.nodes);
+  std::mt19937_64 rng(13);
+  std::uniform_int_distribution<int> cell(1, kCells - 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int ties = 0, misses = 0;
+  for (int r = 0; r < 6000; ++r) {
+    const int i = cell(rng), j = cell(rng);
+    const float x = (float(i) + (r % 3 == 1 ? 0.5f : 0.0f)) / float(kCells);
+    const float y = (float(j) + (r % 3 == 2 ? 0.5f : 0.0f)) / float(kCells);
+    const vec3 target(x, y, 0.1f * std::sin(7.0f * x) * std::cos(5.0f * y));
+    const vec3 origin = target + vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, 0.5f + unit(rng));
+    const vec3 direction = glm::normalize(target - origin);
+    int atThatDistance = 0;
+    const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, 1e30f, &atThatDistance);
+    // Moller-Trumbore is not watertight: a ray through a vertex may slip
+    // between its triangles. The walk must then miss too.
+    ASSERT_EQ(walker.closest(origin, direction, 1e30f), expected) << "ray " << r;
+    ties += atThatDistance > 1 ? 1 : 0;
+    misses += expected.found ? 0 : 1;
+  }
+  std::printf("  %d of 6000 rays met several triangles at the closest distance; %d slipped through\n", ties, misses);
+  EXPECT_GT(ties, 100) << "the test must meet ties";
+  EXPECT_LT(misses, 600) << "most rays aimed at the surface hit it";
+}
+
+// The same triangles in one brute-force leaf and in the tree: the same hits.
+TEST(WideBvh, SingleLeafTreeWalksLikeTheBvh) {
+  const Soup soup = heightField(16);
+  const Tree t = treeOf(soup);
+  const WideBvh leaf = singleLeafBvh(vec3(-1.0f), vec3(2.0f), uint32_t(t.primitives.size()));
+  Walker tree(t.primitives, t.wide.nodes), flat(t.primitives, leaf.nodes);
+  std::mt19937_64 rng(14);
+  for (int r = 0; r < 2000; ++r) {
+    const vec3 origin = vec3(0.5f, 0.5f, 1.0f) + 0.3f * unitVector(rng);
+    const vec3 direction = unitVector(rng);
+    ASSERT_EQ(tree.closest(origin, direction, 1e30f), flat.closest(origin, direction, 1e30f)) << "ray " << r;
+  }
+}
+
+}  // namespace
+}  // namespace spectrace
