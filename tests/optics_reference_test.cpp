@@ -939,19 +939,24 @@ TEST(OpticsReferenceMesh, KernelNormalsOfAClosedMeshPointOutwards) {
 //
 // With inward normals every beam met total internal reflection on entry
 // (sin^2 = 1.125) and none was transmitted.
-TEST_P(OpticsReference, GlassSlabMeshTransmitsTheFresnelShare) {
-  constexpr double kN = 1.5, kPower = 1.0;
+// The laser at 550 nm and the slab of `glass` above.
+Scene glassSlabScene(const SurfaceMaterial& glass) {
   Scene scene = testing::bareSensorScene(0.06, 0.06, 6, 6, 4);
   const glm::dvec3 direction = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));
   Light laser = testing::surfaceLight(LightType::Laser, toWorld(scene.camera, {-0.02, 0.0, 0.03}),
-                                      testing::directionToWorld(scene.camera, direction), kPower, makeLineSpd(550.0));
+                                      testing::directionToWorld(scene.camera, direction), 1.0, makeLineSpd(550.0));
   laser.radiusM = 0.001;
   scene.lights = {laser};
   // The box's corners in the world: the camera frame's (x, y, z) is the
   // world's (-x, y, z) for this camera, so [lo, hi] maps to itself mirrored.
   const glm::dvec3 a = toWorld(scene.camera, {-0.04, -0.04, 0.005}), b = toWorld(scene.camera, {0.04, 0.04, 0.015});
-  scene.objects = {testing::namedObject("slab", 0, testing::worldBox(glm::min(a, b), glm::max(a, b)),
-                                        testing::iorMaterial(kN))};
+  scene.objects = {testing::namedObject("slab", 0, testing::worldBox(glm::min(a, b), glm::max(a, b)), glass)};
+  return scene;
+}
+
+TEST_P(OpticsReference, GlassSlabMeshTransmitsTheFresnelShare) {
+  constexpr double kN = 1.5;
+  const Scene scene = glassSlabScene(testing::iorMaterial(kN));
 
   const double cosI = std::sqrt(0.5), sinT = std::sqrt(0.5) / kN, cosT = std::sqrt(1.0 - sinT * sinT);
   const double rs = (cosI - kN * cosT) / (cosI + kN * cosT), rp = (kN * cosI - cosT) / (kN * cosI + cosT);
@@ -976,19 +981,10 @@ TEST_P(OpticsReference, GlassSlabMeshTransmitsTheFresnelShare) {
 // power came out k times too large. Each beam carries weight 1 or 0 at the
 // sensor, so its share of the power is binomial at every k.
 TEST_P(OpticsReference, DispersiveSlabTransmitsTheFresnelShareAtEveryWavelengthsPerBeam) {
-  constexpr double kPower = 1.0;
   const SellmeierGlass* glass = glassNamed("N-BK7");
   ASSERT_NE(glass, nullptr);
   const double n = sellmeierIndex(glass->b, glass->cUm2, 550.0);
-  Scene scene = testing::bareSensorScene(0.06, 0.06, 6, 6, 4);
-  const glm::dvec3 direction = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));
-  Light laser = testing::surfaceLight(LightType::Laser, toWorld(scene.camera, {-0.02, 0.0, 0.03}),
-                                      testing::directionToWorld(scene.camera, direction), kPower, makeLineSpd(550.0));
-  laser.radiusM = 0.001;
-  scene.lights = {laser};
-  const glm::dvec3 a = toWorld(scene.camera, {-0.04, -0.04, 0.005}), b = toWorld(scene.camera, {0.04, 0.04, 0.015});
-  scene.objects = {testing::namedObject("slab", 0, testing::worldBox(glm::min(a, b), glm::max(a, b)),
-                                        testing::glassMaterial("N-BK7"))};
+  Scene scene = glassSlabScene(testing::glassMaterial("N-BK7"));
 
   const double cosI = std::sqrt(0.5), sinT = std::sqrt(0.5) / n, cosT = std::sqrt(1.0 - sinT * sinT);
   const double rs = (cosI - n * cosT) / (cosI + n * cosT), rp = (n * cosI - cosT) / (n * cosI + cosT);
