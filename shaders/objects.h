@@ -132,8 +132,9 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
       vec4 leave;
       rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
       // Children the ray misses (and empty slots) sort last, at 3.4e38
-      // (beyond any reach: tMax is at most 3.0e38); a fixed sorting network puts the rest near to far, without a
-      // branch that differs between a vector's lanes.
+      // (beyond any reach: tMax is at most 3.0e38). A fixed network of
+      // five compare-exchanges sorts the rest near to far: the same steps
+      // in every lane, where an insertion sort's loop would diverge.
       bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
       met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
                   met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
