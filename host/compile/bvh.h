@@ -22,6 +22,7 @@ struct BinaryBvhNode {
   uint32_t next;
   glm::vec3 boundsMax;
   uint32_t countAxis;  // bits 0-15: primitive count (0: interior), bits 16-17: split axis
+  uint32_t primitiveCount() const { return countAxis & 0xFFFFu; }
 };
 
 struct BuiltBvh {

@@ -19,7 +19,6 @@ namespace {
 
 using glm::dvec3;
 
-uint32_t countOf(const BinaryBvhNode& n) { return n.countAxis & 0xffffu; }
 dvec3 lo(const BinaryBvhNode& n) { return dvec3(n.boundsMin); }
 dvec3 hi(const BinaryBvhNode& n) { return dvec3(n.boundsMax); }
 bool contains(const dvec3& outerLo, const dvec3& outerHi, const dvec3& innerLo, const dvec3& innerHi) {
@@ -60,7 +59,7 @@ void checkTree(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds) 
     ASSERT_EQ(nodeSeen[e.node]++, 0) << "node " << e.node << " reached twice";
     depth = std::max(depth, e.level);
     const BinaryBvhNode& node = bvh.nodes[e.node];
-    const uint32_t count = countOf(node);
+    const uint32_t count = node.primitiveCount();
     if (count == 0) {
       const uint32_t first = e.node + 1, second = node.next;
       ASSERT_GT(second, first);
@@ -115,7 +114,7 @@ std::vector<uint32_t> traverse(const BuiltBvh& bvh, const Ray& ray) {
   while (true) {
     const BinaryBvhNode& n = bvh.nodes[node];
     if (hits(ray, lo(n), hi(n))) {
-      if (countOf(n) == 0) {
+      if (n.primitiveCount() == 0) {
         if (size == stack.size()) {
           ADD_FAILURE() << "traversal stack overflow";
           return found;
@@ -124,7 +123,7 @@ std::vector<uint32_t> traverse(const BuiltBvh& bvh, const Ray& ray) {
         node = node + 1;
         continue;
       }
-      for (uint32_t k = n.next; k < n.next + countOf(n); ++k) found.push_back(bvh.order[k]);
+      for (uint32_t k = n.next; k < n.next + n.primitiveCount(); ++k) found.push_back(bvh.order[k]);
     }
     if (size == 0) break;
     node = stack[--size];
@@ -191,7 +190,7 @@ TEST(Bvh, OnePrimitiveIsOneLeaf) {
   const std::vector<PrimitiveBounds> bounds{{dvec3(0.1, 0.2, 0.3), dvec3(0.4, 0.5, 0.6)}};
   const BuiltBvh bvh = buildBvh(bounds);
   ASSERT_EQ(bvh.nodes.size(), 1u);
-  EXPECT_EQ(countOf(bvh.nodes[0]), 1u);
+  EXPECT_EQ(bvh.nodes[0].primitiveCount(), 1u);
   EXPECT_EQ(bvh.nodes[0].next, 0u);
   EXPECT_EQ(bvh.order, std::vector<uint32_t>{0});
   EXPECT_EQ(bvh.depth, 1u);

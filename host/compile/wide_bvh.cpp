@@ -11,8 +11,6 @@ namespace {
 
 constexpr uint32_t kWidth = 4;
 
-uint32_t countOf(const BinaryBvhNode& n) { return n.countAxis & 0xFFFFu; }
-
 // Half the surface area, in double so that thin boxes still compare.
 double halfArea(const BinaryBvhNode& n) {
   const glm::dvec3 e = glm::max(glm::dvec3(n.boundsMax) - glm::dvec3(n.boundsMin), glm::dvec3(0.0));
@@ -45,7 +43,7 @@ class Widener {
     std::array<uint32_t, kWidth> slots{};
     uint32_t n = 0;
     const BinaryBvhNode& node = binary_.nodes[index];
-    if (countOf(node) > 0) {
+    if (node.primitiveCount() > 0) {
       slots[n++] = index;
     } else {
       slots[n++] = index + 1;
@@ -59,7 +57,7 @@ class Widener {
       double widestArea = -1.0;
       for (uint32_t k = 0; k < n; ++k) {
         const BinaryBvhNode& c = binary_.nodes[slots[k]];
-        if (countOf(c) == 0 && halfArea(c) > widestArea) {
+        if (c.primitiveCount() == 0 && halfArea(c) > widestArea) {
           widest = int(k);
           widestArea = halfArea(c);
         }
@@ -71,12 +69,12 @@ class Widener {
     }
     for (uint32_t k = 0; k < n; ++k) {
       const BinaryBvhNode& c = binary_.nodes[slots[k]];
-      const uint32_t count = countOf(c);
+      const uint32_t count = c.primitiveCount();
       // Interior children are filled in below, once their index is known.
       setSlot(out_.nodes[wideIndex], k, c.boundsMin, c.boundsMax, count > 0 ? c.next : 0u, count);
     }
     for (uint32_t k = 0; k < n; ++k)
-      if (countOf(binary_.nodes[slots[k]]) == 0) {
+      if (binary_.nodes[slots[k]].primitiveCount() == 0) {
         const uint32_t child = emit(slots[k], level + 1);
         out_.nodes[wideIndex].child[k] = child;
       }
@@ -106,13 +104,11 @@ WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) 
   return out;
 }
 
-void wideBvhBounds(const WideBvh& bvh, glm::vec3& lo, glm::vec3& hi) {
+void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi) {
   lo = glm::vec3(std::numeric_limits<float>::infinity());
   hi = -lo;
-  if (bvh.nodes.empty()) return;
-  const device::BvhNode& root = bvh.nodes[0];
-  for (uint32_t k = 0; k < kWidth; ++k) {
-    if (root.count[k] == 0 && root.child[k] == 0) continue;
+  for (int k = 0; k < int(kWidth); ++k) {
+    if (isEmptySlot(root, k)) continue;
     lo = glm::min(lo, glm::vec3(root.minX[k], root.minY[k], root.minZ[k]));
     hi = glm::max(hi, glm::vec3(root.maxX[k], root.maxY[k], root.maxZ[k]));
   }

@@ -32,7 +32,11 @@ WideBvh widenBvh(const BuiltBvh& binary);
 // bench's brute force; count at most 2^31).
 WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
 
-// The union of the root's child boxes (an empty box, lo > hi, for no nodes).
-void wideBvhBounds(const WideBvh& bvh, glm::vec3& lo, glm::vec3& hi);
+// Whether slot k of a node holds nothing (device::BvhNode: count and child
+// both 0, the root being nobody's child).
+inline bool isEmptySlot(const device::BvhNode& node, int k) { return node.count[k] == 0 && node.child[k] == 0; }
+
+// The union of a root's child boxes: the tree's bounds.
+void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi);
 
 }  // namespace spectrace

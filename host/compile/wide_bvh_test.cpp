@@ -26,7 +26,6 @@ namespace {
 using glm::dvec3;
 using glm::vec3;
 
-bool emptySlot(const device::BvhNode& n, int k) { return n.count[k] == 0 && n.child[k] == 0; }
 vec3 slotLo(const device::BvhNode& n, int k) { return {n.minX[k], n.minY[k], n.minZ[k]}; }
 vec3 slotHi(const device::BvhNode& n, int k) { return {n.maxX[k], n.maxY[k], n.maxZ[k]}; }
 bool contains(const dvec3& outerLo, const dvec3& outerHi, const dvec3& lo, const dvec3& hi) {
@@ -90,7 +89,7 @@ void checkLayout(const Tree& t) {
     const device::BvhNode& node = nodes[e.node];
     int used = 0;
     for (int k = 0; k < 4; ++k) {
-      if (emptySlot(node, k)) continue;
+      if (isEmptySlot(node, k)) continue;
       ++used;
       const dvec3 lo(slotLo(node, k)), hi(slotHi(node, k));
       EXPECT_TRUE(contains(e.lo, e.hi, lo, hi)) << "node " << e.node << " slot " << k << " leaves its parent's box";
@@ -219,7 +218,7 @@ TEST(WideBvh, OnePrimitiveIsOneLeafUnderTheRoot) {
   const Tree t = treeOf(soup);
   ASSERT_EQ(t.wide.nodes.size(), 1u);
   EXPECT_EQ(t.wide.nodes[0].count[0], 1u);
-  for (int k = 1; k < 4; ++k) EXPECT_TRUE(emptySlot(t.wide.nodes[0], k));
+  for (int k = 1; k < 4; ++k) EXPECT_TRUE(isEmptySlot(t.wide.nodes[0], k));
   checkLayout(t);
   Walker walker(t.primitives, t.wide.nodes);
   const KernelHit h = walker.closest({0.25f, 0.25f, 0.0f}, {0, 0, 1}, 1e30f);
@@ -240,7 +239,7 @@ TEST(WideBvh, NodesAreMostlyFull) {
   const Tree t = treeOf(randomSoup(20000, 3));
   size_t slots = 0;
   for (const auto& node : t.wide.nodes)
-    for (int k = 0; k < 4; ++k) slots += emptySlot(node, k) ? 0 : 1;
+    for (int k = 0; k < 4; ++k) slots += isEmptySlot(node, k) ? 0 : 1;
   const double perNode = double(slots) / double(t.wide.nodes.size());
   std::printf("  %zu binary nodes, %zu wide nodes, %.2f slots a wide node\n", t.binary.nodes.size(),
               t.wide.nodes.size(), perNode);
