@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include <fmt/format.h>
 #include <glm/common.hpp>
@@ -77,16 +79,43 @@ struct Item {
   glm::dvec3 centroid() const { return 0.5 * lo + 0.5 * hi; }  // lo + hi could overflow
 };
 
+// Subtrees of at least this many primitives may be built on a thread of
+// their own: below it, a thread's start costs more than the work.
+constexpr uint32_t kMinForkedPrimitives = 1u << 15;
+
+// A subtree's nodes, depth first, its root at 0; interior `next` indices
+// count from that root, leaf `next` indices are final (item places).
+struct Subtree {
+  std::vector<BinaryBvhNode> nodes;
+  uint32_t depth = 0;  // deepest level reached, counted from the tree's root
+
+  // Appends `sub` after this subtree's nodes, moving its interior indices.
+  void append(const Subtree& sub) {
+    const uint32_t offset = uint32_t(nodes.size());
+    nodes.reserve(nodes.size() + sub.nodes.size());
+    for (BinaryBvhNode node : sub.nodes) {
+      if (node.primitiveCount() == 0) node.next += offset;
+      nodes.push_back(node);
+    }
+    depth = std::max(depth, sub.depth);
+  }
+};
+
 class Builder {
  public:
-  Builder(std::span<const PrimitiveBounds> bounds, BuiltBvh& out) : out_(out) {
+  Builder(std::span<const PrimitiveBounds> bounds, unsigned threads, BuiltBvh& out) : out_(out) {
     items_.resize(bounds.size());
     for (size_t i = 0; i < bounds.size(); ++i) items_[i] = Item{bounds[i].lo, bounds[i].hi, uint32_t(i)};
+    // Forks happen on the top levels; each doubles the tasks at work.
+    while ((1u << forkLevels_) < threads && forkLevels_ < 8) ++forkLevels_;
   }
 
   // Builds the tree, then reads `order` off the items' final places.
   void buildAll() {
-    build(0, uint32_t(items_.size()), 1);
+    Subtree tree;
+    build(0, uint32_t(items_.size()), 1, tree);
+    out_.nodes = std::move(tree.nodes);
+    out_.depth = tree.depth;
     out_.order.resize(items_.size());
     for (size_t k = 0; k < items_.size(); ++k) out_.order[k] = items_[k].index;
   }
@@ -117,11 +146,14 @@ class Builder {
   };
 
   // Builds the subtree of items [begin, end) whose root is at `level` (the
-  // tree's root: 1), appending its nodes depth first.
-  void build(uint32_t begin, uint32_t end, uint32_t level) {
-    const uint32_t nodeIndex = uint32_t(out_.nodes.size());
-    out_.nodes.emplace_back();
-    out_.depth = std::max(out_.depth, level);
+  // tree's root: 1), appending its nodes to `tree` depth first. Every
+  // decision depends on the items alone, so the tree is the same whether
+  // its right halves are built here or on other threads: they touch
+  // disjoint item ranges and their nodes are appended in the same order.
+  void build(uint32_t begin, uint32_t end, uint32_t level, Subtree& tree) {
+    const uint32_t nodeIndex = uint32_t(tree.nodes.size());
+    tree.nodes.emplace_back();
+    tree.depth = std::max(tree.depth, level);
     const uint32_t n = end - begin;
 
     Box box, centroidBox;
@@ -130,13 +162,14 @@ class Builder {
       const glm::dvec3 c = items_[k].centroid();
       centroidBox.extend(c, c);
     }
-    BinaryBvhNode& node = out_.nodes[nodeIndex];
+    BinaryBvhNode& node = tree.nodes[nodeIndex];
     node.boundsMin = glm::vec3(roundDown(box.lo.x), roundDown(box.lo.y), roundDown(box.lo.z));
     node.boundsMax = glm::vec3(roundUp(box.hi.x), roundUp(box.hi.y), roundUp(box.hi.z));
 
     const glm::dvec3 extent = centroidBox.hi - centroidBox.lo;
     const bool centroidsCoincide = !(extent.x > 0.0 || extent.y > 0.0 || extent.z > 0.0);
-    if (n == 1 || (n <= kMaxLeaf && (centroidsCoincide || level == kMaxDepth))) return makeLeaf(nodeIndex, begin, n);
+    if (n == 1 || (n <= kMaxLeaf && (centroidsCoincide || level == kMaxDepth)))
+      return makeLeaf(tree.nodes[nodeIndex], begin, n);
 
     uint32_t mid = begin + n / 2;  // coinciding centroids: split the list in the middle
     int axis = 0;
@@ -144,7 +177,8 @@ class Builder {
       axis = extent.y > extent[axis] ? 1 : axis;
       axis = extent.z > extent[axis] ? 2 : axis;
       const Split split = bestSahSplit(begin, end, box, centroidBox);
-      if (split.axis >= 0 && n <= kMaxLeaf && !(split.cost < double(n))) return makeLeaf(nodeIndex, begin, n);
+      if (split.axis >= 0 && n <= kMaxLeaf && !(split.cost < double(n)))
+        return makeLeaf(tree.nodes[nodeIndex], begin, n);
       // A split the depth limit allows: each child must still fit with
       // median splits below it.
       const uint32_t childLevels = kMaxDepth - level;
@@ -165,10 +199,21 @@ class Builder {
       }
     }
 
-    out_.nodes[nodeIndex].countAxis = uint32_t(axis) << 16;
-    build(begin, mid, level + 1);
-    out_.nodes[nodeIndex].next = uint32_t(out_.nodes.size());
-    build(mid, end, level + 1);
+    tree.nodes[nodeIndex].countAxis = uint32_t(axis) << 16;
+    if (level <= forkLevels_ && end - mid >= kMinForkedPrimitives) {
+      std::future<Subtree> right = std::async(std::launch::async, [this, mid, end, level] {
+        Subtree sub;
+        build(mid, end, level + 1, sub);
+        return sub;
+      });
+      build(begin, mid, level + 1, tree);
+      tree.nodes[nodeIndex].next = uint32_t(tree.nodes.size());
+      tree.append(right.get());
+      return;
+    }
+    build(begin, mid, level + 1, tree);
+    tree.nodes[nodeIndex].next = uint32_t(tree.nodes.size());
+    build(mid, end, level + 1, tree);
   }
 
   // Binned SAH over every axis along which the centroids spread. No split
@@ -218,18 +263,19 @@ class Builder {
     return best;
   }
 
-  void makeLeaf(uint32_t nodeIndex, uint32_t begin, uint32_t n) {
-    out_.nodes[nodeIndex].next = begin;
-    out_.nodes[nodeIndex].countAxis = n;
+  static void makeLeaf(BinaryBvhNode& node, uint32_t begin, uint32_t n) {
+    node.next = begin;
+    node.countAxis = n;
   }
 
   std::vector<Item> items_;
   BuiltBvh& out_;
+  uint32_t forkLevels_ = 0;  // levels whose nodes may build their right child on another thread
 };
 
 }  // namespace
 
-BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds) {
+BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds, unsigned threads) {
   // Node indices are uint32 and a tree has up to 2n - 1 nodes.
   if (bounds.size() > (size_t(1) << 31))
     throw std::invalid_argument(fmt::format("BVH: {} primitives, more than 2^31", bounds.size()));
@@ -242,7 +288,8 @@ BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds) {
   }
   BuiltBvh out;
   if (bounds.empty()) return out;
-  Builder(bounds, out).buildAll();
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  Builder(bounds, threads, out).buildAll();
   return out;
 }
 

@@ -324,6 +324,31 @@ TEST(Bvh, ExponentiallySpacedPrimitivesTraverseLikeBruteForce) {
   checkTraversal(bvh, boxes, dvec3(0.0), dvec3(100.0, 1.0, 1.0), 5, 500);
 }
 
+// Subtrees built on other threads must give the very tree one thread does:
+// the same nodes in the same places and the same primitive order.
+void expectSameTree(const BuiltBvh& a, const BuiltBvh& b, unsigned threads) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size()) << threads << " threads";
+  for (size_t k = 0; k < a.nodes.size(); ++k) {
+    const BinaryBvhNode &x = a.nodes[k], &y = b.nodes[k];
+    ASSERT_TRUE(x.boundsMin == y.boundsMin && x.boundsMax == y.boundsMax && x.next == y.next &&
+                x.countAxis == y.countAxis)
+        << "node " << k << " differs with " << threads << " threads";
+  }
+  EXPECT_EQ(a.order, b.order) << threads << " threads";
+  EXPECT_EQ(a.depth, b.depth) << threads << " threads";
+}
+
+TEST(Bvh, ThreadsBuildTheSameTree) {
+  // Enough primitives that subtrees below the top levels are forked
+  // (kMinForkedPrimitives is 2^15), and clusters so that SAH splits unevenly.
+  std::vector<PrimitiveBounds> boxes = randomBoxes(150000, 8, 0.001, 0.004);
+  const std::vector<PrimitiveBounds> cluster = randomBoxes(60000, 9, 0.0001, 0.0004);
+  for (const PrimitiveBounds& b : cluster) boxes.push_back({0.01 * b.lo, 0.01 * b.hi});
+  const BuiltBvh one = buildBvh(boxes, 1);
+  checkTree(one, boxes);
+  for (unsigned threads : {2u, 3u, 8u}) expectSameTree(one, buildBvh(boxes, threads), threads);
+}
+
 TEST(Bvh, AMillionPrimitives) {
   // The scale scenes reach; the build takes about a second in Release.
   const std::vector<PrimitiveBounds> boxes = randomBoxes(1000000, 6, 0.0005, 0.002);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <future>
 #include <numbers>
 #include <streambuf>
 #include <system_error>
@@ -184,27 +185,25 @@ struct TinyObjMesh {
   std::vector<tinyobj::shape_t> shapes;
 };
 
-// tinyobjloader's reading of `text`, which is emptied (the file's bytes,
-// up to 1 GiB, are not needed after).
-TinyObjMesh readWithTinyobj(const jf::Source& c, const std::string& ptr, std::string& text, const std::string& quoted) {
+// tinyobjloader's reading of `text`: the mesh, or its error message.
+struct TinyObjReading {
   TinyObjMesh mesh;
-  std::vector<tinyobj::material_t> materials;
-  std::string warning, error;
   bool parsed = false;
-  {
-    StringViewBuf buffer(text);
-    std::istream in(&buffer);
-    // No material reader: "mtllib" lines are skipped (surfaces come from
-    // the scene). Polygons stay whole: they are split below, where faces
-    // keep the file's numbers.
-    parsed = tinyobj::LoadObj(&mesh.attrib, &mesh.shapes, &materials, &warning, &error, &in, nullptr,
-                              /*triangulate=*/false, /*default_vcols_fallback=*/false);
-  }
-  text = std::string();
-  if (!parsed) c.fail(ptr, fmt::format("cannot parse {}: {}", quoted, trimmed(error)));
-  if (warning.find("Degenerated face") != std::string::npos)
-    c.fail(ptr, fmt::format("{} has a face with fewer than 3 vertices", quoted));
-  return mesh;
+  std::string error, warning;
+};
+
+TinyObjReading readWithTinyobj(std::string& text) {
+  TinyObjReading reading;
+  std::vector<tinyobj::material_t> materials;
+  StringViewBuf buffer(text);
+  std::istream in(&buffer);
+  // No material reader: "mtllib" lines are skipped (surfaces come from
+  // the scene). Polygons stay whole: they are split below, where faces
+  // keep the file's numbers.
+  reading.parsed = tinyobj::LoadObj(&reading.mesh.attrib, &reading.mesh.shapes, &materials, &reading.warning,
+                                    &reading.error, &in, nullptr,
+                                    /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  return reading;
 }
 
 struct FanTriangles {
@@ -257,10 +256,20 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
 std::string parseObjMesh(const jf::Source& c, const std::string& ptr, std::string text, const std::string& asWritten,
                          const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
   const std::string quoted = jf::jsonQuoted(asWritten);
-  const ObjTextCheck check = checkObjText(text);
+  // The text check and tinyobjloader read the same bytes independently, so
+  // they run side by side (each is about a third of a large mesh's load);
+  // the check's verdict is still taken first.
+  std::future<ObjTextCheck> checking =
+      std::async(std::launch::async, [&text] { return checkObjText(text); });
+  TinyObjReading reading = readWithTinyobj(text);
+  const ObjTextCheck check = checking.get();
+  text = std::string();  // up to 1 GiB, not needed after
   if (check.fault)
     c.fail(ptr, fmt::format("{} line {}, {}: {}", quoted, check.fault->line, check.fault->token, check.fault->what));
-  TinyObjMesh mesh = readWithTinyobj(c, ptr, text, quoted);
+  if (!reading.parsed) c.fail(ptr, fmt::format("cannot parse {}: {}", quoted, trimmed(reading.error)));
+  if (reading.warning.find("Degenerated face") != std::string::npos)
+    c.fail(ptr, fmt::format("{} has a face with fewer than 3 vertices", quoted));
+  TinyObjMesh& mesh = reading.mesh;
   tinyobj::attrib_t& attrib = mesh.attrib;
   std::vector<tinyobj::shape_t>& objShapes = mesh.shapes;
   const size_t vertexCount = attrib.vertices.size() / 3;
