@@ -15,6 +15,7 @@ packages=(
   libtinyobjloader-dev                                           # OBJ meshes of scene objects
   libzstd-dev                                                    # compressed render states
   libembree-dev                                                  # the bench's ray ceiling (optional in CMake)
+  python3-dev python3-venv                                       # the Python module (python/)
 )
 # SPECTRACE_VALIDATION=1 and validation_test need the Khronos layer.
 packages+=(vulkan-validationlayers)
@@ -28,5 +29,15 @@ if ((${#missing[@]})); then
   apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${SPECTRACE_CMAKE_ARGS:-}
+# The Python module's build and test tools, from PyPI, in a virtual
+# environment of the machine's python3 (python/requirements.txt); CMake
+# builds the module for that interpreter, so `python3` imports it too.
+venv=build/python-venv
+if [[ ! -x $venv/bin/python ]] || ! cmp -s python/requirements.txt "$venv/requirements.txt"; then
+  python3 -m venv --clear "$venv"
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check -r python/requirements.txt
+  cp python/requirements.txt "$venv/requirements.txt"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE="$PWD/$venv/bin/python" ${SPECTRACE_CMAKE_ARGS:-}
 cmake --build build -j "$(nproc)"

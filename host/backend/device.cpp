@@ -1,6 +1,7 @@
 #include "backend/device.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -79,6 +80,57 @@ std::string describeDevices() {
     text += "\nNo usable Vulkan device: --device auto uses the CPU reference.\n";
   }
   return text;
+}
+
+std::string describeDevicesJson() {
+  nlohmann::json out = nlohmann::json::array();
+  const std::vector<vk_util::DeviceInfo> devices = vulkanDevices();
+  const auto preferred = vk_util::preferredDevice(devices);
+  const bool autoTakesGpu = preferred && devices[*preferred].isHardware();
+  for (size_t i = 0; i < devices.size(); ++i) {
+    const vk_util::DeviceInfo& d = devices[i];
+    const bool chosen = preferred == i;
+    out.push_back({
+        {"index", d.index},
+        {"name", d.name},
+        {"kind", "gpu"},
+        {"type", vk::to_string(d.type)},
+        {"hardware", d.isHardware()},
+        {"api_version", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),
+                                    VK_API_VERSION_PATCH(d.apiVersion))},
+        {"driver", d.driverName},
+        {"driver_info", d.driverInfo},
+        {"usable", d.missingFeatures().empty()},
+        {"missing", d.missingFeatures()},
+        {"used_by_device_gpu", chosen},
+        {"used_by_device_auto", chosen && autoTakesGpu},
+        {"limits",
+         {{"maxStorageBufferRange", d.maxStorageBufferRange},
+          {"maxMemoryAllocationSize", d.maxMemoryAllocationSize},
+          {"deviceLocalHeapBytes", d.deviceLocalHeapBytes},
+          {"maxComputeWorkGroupCount", d.maxComputeWorkGroupCount},
+          {"maxComputeWorkGroupInvocations", d.maxComputeWorkGroupInvocations},
+          {"maxPushConstantsSize", d.maxPushConstantsSize},
+          {"maxPerStageDescriptorStorageBuffers", d.maxPerStageDescriptorStorageBuffers},
+          {"maxUniformBufferRange", d.maxUniformBufferRange},
+          {"timestampPeriodNs", d.timestampPeriodNs},
+          {"timestamps", d.timestampsSupported},
+          {"shaderInt64", d.shaderInt64},
+          {"shaderFloat64", d.shaderFloat64},
+          {"shaderBufferInt64Atomics", d.int64Atomics},
+          {"scalarBlockLayout", d.scalarBlockLayout}}},
+    });
+  }
+  const DeviceCapabilities cpu = CpuDevice::referenceCapabilities();
+  out.push_back({{"name", cpu.name},
+                 {"kind", "cpu"},
+                 {"type", "CPU reference"},
+                 {"hardware", false},
+                 {"usable", true},
+                 {"missing", ""},
+                 {"used_by_device_gpu", false},
+                 {"used_by_device_auto", !autoTakesGpu}});
+  return out.dump();
 }
 
 std::unique_ptr<Device> Device::open(DeviceChoice choice, const std::function<void(const std::string&)>& log,

@@ -67,6 +67,11 @@ std::vector<DeviceSpec> listDevices(const std::string& filter = "");
 // `spectrace devices`: every Vulkan device with its limits and whether it
 // is usable, and what --device auto and gpu pick.
 std::string describeDevices();
+// The same as JSON, for programs (the Python module's devices()): an array
+// with one object for each Vulkan device (index, name, type, kind "gpu",
+// api_version, driver, usable, missing, limits, and which of --device auto
+// and gpu pick it) and one for the CPU reference (kind "cpu").
+std::string describeDevicesJson();
 
 class Device {
  public:

@@ -511,14 +511,21 @@ Scene bundledSceneOf(const FilmState& state) {
 
 }  // namespace
 
-RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
-                              double wallSeconds) const {
-  const FilmFingerprint& f = state.fingerprint;
+namespace {
+
+// The job that traced `state` (its scene, seed, beams and options), checked
+// to compile to the state's film. Throws FilmStateError.
+struct StateJob {
   RenderJob job;
+  CompiledScene plan;
+};
+
+StateJob jobOfState(const FilmState& state, bool spectral) {
+  const FilmFingerprint& f = state.fingerprint;
+  StateJob s;
+  RenderJob& job = s.job;
   job.scene = state.bundle ? bundledSceneOf(state) : sceneFileOf(state);
-  job.output = output;
   job.outputs.spectral = spectral;
-  checkOutputPath(job);  // the scene and its CSV spectra are inputs too
   job.seed = f.seed;
   job.beams = state.beams();
   job.firstBeam = state.ranges.empty() ? 0 : state.ranges.front().first;
@@ -532,35 +539,83 @@ RenderResult Session::develop(const FilmState& state, const std::filesystem::pat
   // command line may have set them over the scene's).
   if (f.compileOptions.count("camera_paths") && f.compileOptions.at("camera_paths"))
     job.scene.render.wavelengthsPerBeam = f.wavelengthsPerBeam;
-  const CompiledScene plan = compileScene(job.scene, f.seed, job.plan);
-  if (std::string field = fingerprintDifference(f, jobFingerprint(job, plan)); !field.empty())
+  s.plan = compileScene(job.scene, f.seed, job.plan);
+  if (std::string field = fingerprintDifference(f, jobFingerprint(job, s.plan)); !field.empty())
     throw FilmStateError("the scene no longer compiles to the state's film: it differs in " + field);
+  return s;
+}
+
+// The state's film resolved on `device` as its job would resolve it.
+RenderResult developStateJob(const Device& device, const FilmState& state, const StateJob& s, bool spectral) {
   TracerOptions tracerOptions;
-  tracerOptions.specialisedFeatures = f.specialisation;
-  const auto tracer = device_->makeTracer(plan, tracerOptions);
+  tracerOptions.specialisedFeatures = state.fingerprint.specialisation;
+  const auto tracer = device.makeTracer(s.plan, tracerOptions);
   tracer->upload(state.histogram);
   RenderResult result;
-  result.plan = plan;
+  result.plan = s.plan;
   result.histogram = state.histogram;
   result.beamsTraced = state.beams();
-  result.wallSeconds = wallSeconds;
   result.deviceKind = tracer->kind();
   result.deviceName = tracer->deviceName();
-  const ResolveParameters parameters = resolveParametersFor(job.scene, plan, result.beamsTraced);
+  const ResolveParameters parameters = resolveParametersFor(s.job.scene, s.plan, result.beamsTraced);
   result.image = tracer->develop(parameters, &result.summary);
-  if (spectral || job.scene.outputSpectral) addSpectralChannels(result.image, state.histogram, plan, parameters);
+  if (spectral || s.job.scene.outputSpectral) addSpectralChannels(result.image, state.histogram, s.plan, parameters);
+  return result;
+}
+
+}  // namespace
+
+RenderResult Session::developInMemory(const FilmState& state, bool spectral, Scene* scene) const {
+  const StateJob s = jobOfState(state, spectral);
+  if (scene) *scene = s.job.scene;
+  return developStateJob(*device_, state, s, spectral);
+}
+
+RenderResult Session::develop(const FilmState& state, const std::filesystem::path& output, bool spectral, bool png,
+                              double wallSeconds) const {
+  StateJob s = jobOfState(state, spectral);
+  s.job.output = output;
+  checkOutputPath(s.job);  // the scene and its CSV spectra are inputs too
+  RenderResult result = developStateJob(*device_, state, s, spectral);
+  result.wallSeconds = wallSeconds;
+  const FilmFingerprint& f = state.fingerprint;
   prepareFolder(output);
   const OutputLock lock(output);
   removeStaleTemporaries(output);
   try {
     writeImage(output, result.image,
-               renderMetadata(job.scene, result.deviceLabel(), job.plan.aim, f.seed, job.firstBeam,
+               renderMetadata(s.job.scene, result.deviceLabel(), s.job.plan.aim, f.seed, s.job.firstBeam,
                               result.beamsTraced, wallSeconds),
                png);
   } catch (const ImageIoError& e) {
     throw OutputError(e.what());
   }
   return result;
+}
+
+Session::InMemoryRender Session::renderInMemory(const RenderJob& job) const {
+  if (job.resume) throw std::invalid_argument("renderInMemory: resuming is not supported");
+  RenderOptions options = job.renderOptions();
+  options.outputs.spectral = options.outputs.spectral || job.scene.outputSpectral;
+  options.outputs.spectralByCaller = true;
+  options.outputs.downloadFilm = true;  // the state holds the film
+  options.loop.checkpointSeconds = 0.0;
+  options.loop.onCheckpoint = nullptr;
+  options.loop.onCheckpointFilm = nullptr;
+  if (options.outputs.spectral) checkSpectralChannels(job.scene);
+  CompiledScene plan = compileScene(job.scene, options.seed, options.plan);
+  const FilmFingerprint fingerprint = jobFingerprint(job, plan);
+  std::optional<SceneBundle> bundle = sceneBundleOf(job.scene);
+  InMemoryRender out;
+  out.result = spectrace::render(job.scene, std::move(plan), options, *device_);
+  device_->savePipelineCache();
+  RenderResult& result = out.result;
+  if (options.outputs.spectral)
+    addSpectralChannels(result.image, result.histogram, result.plan,
+                        resolveParametersFor(job.scene, result.plan, result.beamsTraced));
+  out.state = FilmState{fingerprint, {{options.firstBeam, result.beamsTraced}}, result.histogram, std::move(bundle),
+                        stateIrradiancePerCount(result.plan.irradianceScale(), result.beamsTraced)};
+  return out;
 }
 
 }  // namespace spectrace

@@ -126,6 +126,23 @@ class Session {
   // Waits until the last handed-over job is written (its errors stay in its future).
   void finishWriting() const;
 
+  // The same render held in memory, for programs that read the image
+  // rather than a file (the Python module): nothing is written, and no
+  // checkpoint is taken. The image is the one render() would write, the
+  // spectral block included when asked for; `state` is the exact state
+  // render() would write with job.state set. Cancelled renders return what
+  // was traced (result.beamsTraced < the job's beams).
+  struct InMemoryRender {
+    RenderResult result;
+    FilmState state;
+  };
+  InMemoryRender renderInMemory(const RenderJob& job) const;
+
+  // A (merged) state developed in memory, as a render of all its beams
+  // would resolve it; `scene` gets the state's scene (for the image's
+  // metadata). Throws FilmStateError.
+  RenderResult developInMemory(const FilmState& state, bool spectral, Scene* scene = nullptr) const;
+
   // Develops a (merged) state into `output` on the session's device, as a
   // render of all its beams would: the scene is the state's bundle (or, in
   // a state without one, its fingerprint's file), which must hash as the
