@@ -223,7 +223,9 @@ std::shared_ptr<const FilmState> mergeAll(const std::vector<std::shared_ptr<cons
     try {
       merged = mergeStates(merged, *states[i]);
     } catch (const FilmStateError& e) {
-      throw FilmStateError(fmt::format("cannot merge state {} with the {} before it: {}", i, i, e.what()));
+      std::string before = "states[0]";
+      for (size_t k = 1; k < i; ++k) before += fmt::format(", states[{}]", k);
+      throw FilmStateError(fmt::format("cannot merge states[{}] with {}: {}", i, before, e.what()));
     }
   }
   return std::make_shared<const FilmState>(std::move(merged));

@@ -13,6 +13,7 @@ EXR channels bit for bit. This file only shapes arguments and errors.
 
 from __future__ import annotations
 
+import errno
 import itertools
 import json
 import os
@@ -82,12 +83,19 @@ def _scene_source(scene: SceneLike, base_dir: Optional[Union[str, "os.PathLike[s
     if isinstance(scene, Mapping):
         return json.dumps(scene), False, os.path.join(folder, "<dict>")
     if isinstance(scene, os.PathLike):
-        return os.fspath(scene), True, ""
+        return _existing_file(os.fspath(scene), "scene file"), True, ""
     if isinstance(scene, str):
         if scene.lstrip().startswith("{"):
             return scene, False, os.path.join(folder, "<json>")
-        return scene, True, ""
+        return _existing_file(scene, "scene file"), True, ""
     raise TypeError(f"scene must be a dict, a JSON string or a path, not {type(scene).__name__}")
+
+
+def _existing_file(path: str, what: str) -> str:
+    # Missing files are OSErrors, as Python's own open() raises them.
+    if not os.path.isfile(path):
+        raise FileNotFoundError(errno.ENOENT, f"no such {what}", path)
+    return path
 
 
 def _overrides(values: Mapping[str, Any]):
@@ -160,7 +168,11 @@ class Result:
 
 
 class Session:
-    """A device opened once for many renders, as ``spectrace batch`` does."""
+    """A device opened once for many renders, as ``spectrace batch`` does.
+
+    ``device`` is "auto", "gpu" or "cpu" (another word: ValueError); a
+    device that cannot be opened raises DeviceError.
+    """
 
     def __init__(self, device: str = "auto"):
         self._native = _spectrace._Session(device)
@@ -218,7 +230,7 @@ def render(scene: SceneLike, *, beams: Optional[int] = None, seed: Optional[int]
 
 
 def load_state(path: Union[str, "os.PathLike[str]"]) -> State:
-    return State(_spectrace._load_state(os.fspath(path)))
+    return State(_spectrace._load_state(_existing_file(os.fspath(path), "state file")))
 
 
 def merge(states: Sequence[State]) -> State:

@@ -102,6 +102,16 @@ def test_scene_errors_have_the_cli_text(tmp_path):
     assert caught.value.pointer == "/camera/sensor/pixels/0"
 
 
+def test_missing_files_are_os_errors(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        spectrace.render(tmp_path / "none.json", device="cpu")
+    with pytest.raises(FileNotFoundError):
+        spectrace.load_state(str(tmp_path / "none.state"))
+    (tmp_path / "bad.state").write_bytes(b"not a state")
+    with pytest.raises(spectrace.StateError):
+        spectrace.load_state(tmp_path / "bad.state")
+
+
 def test_relative_files_in_a_dict_resolve_against_base_dir(tmp_path):
     (tmp_path / "flat.csv").write_text("wavelength_nm,value\n380,1\n780,1\n")
     scene = lamp_dict()
