@@ -613,8 +613,9 @@ Session::InMemoryRender Session::renderInMemory(const RenderJob& job) const {
   if (options.outputs.spectral)
     addSpectralChannels(result.image, result.histogram, result.plan,
                         resolveParametersFor(job.scene, result.plan, result.beamsTraced));
-  out.state = FilmState{fingerprint, {{options.firstBeam, result.beamsTraced}}, result.histogram, std::move(bundle),
-                        stateIrradiancePerCount(result.plan.irradianceScale(), result.beamsTraced)};
+  // The film moves into the state: the result's copy would be a second one.
+  out.state = FilmState{fingerprint, {{options.firstBeam, result.beamsTraced}}, std::move(result.histogram),
+                        std::move(bundle), stateIrradiancePerCount(result.plan.irradianceScale(), result.beamsTraced)};
   return out;
 }
 

@@ -130,8 +130,9 @@ class Session {
   // rather than a file (the Python module): nothing is written, and no
   // checkpoint is taken. The image is the one render() would write, the
   // spectral block included when asked for; `state` is the exact state
-  // render() would write with job.state set. Cancelled renders return what
-  // was traced (result.beamsTraced < the job's beams).
+  // render() would write with job.state set (its film moved there: the
+  // result's histogram is left empty). Cancelled renders return what was
+  // traced (result.beamsTraced < the job's beams).
   struct InMemoryRender {
     RenderResult result;
     FilmState state;
