@@ -194,14 +194,8 @@ void writeResultExr(const Result& r, const std::string& path, bool png) {
   job.png = png;
   job.outputs.spectral = !r.image.spectralIrradiance.empty();
   checkOutputPath(job);  // never over the scene or a file it names
-  if (job.output.has_parent_path()) fs::create_directories(job.output.parent_path());
-  const ImageMetadata meta = renderMetadata(r.scene, r.deviceLabel, r.aim, r.seed, r.firstBeam, r.beams, r.seconds);
-  if (png) {
-    fs::path preview = job.output;
-    preview.replace_extension(".png");
-    writePngPreview(preview, r.image);
-  }
-  writeExr(job.output, r.image, meta);
+  writeRenderImage(job.output, r.image,
+                   renderMetadata(r.scene, r.deviceLabel, r.aim, r.seed, r.firstBeam, r.beams, r.seconds), png);
 }
 
 // The film's bin counters, (H, W, bins) uint64, or (H, W, bins, 2) with the

@@ -95,6 +95,16 @@ void prepareFolder(const std::filesystem::path& output) {
 
 }  // namespace
 
+void writeRenderImage(const std::filesystem::path& output, const RenderImage& image, const ImageMetadata& metadata,
+                      bool png) {
+  prepareFolder(output);
+  try {
+    writeImage(output, image, metadata, png);
+  } catch (const ImageIoError& e) {
+    throw OutputError(e.what());
+  }
+}
+
 FilmFingerprint jobFingerprint(const RenderJob& job, const CompiledScene& plan) {
   FilmFingerprint f = fingerprintOf(plan.film, job.scene.sourcePath.string(), job.scene.sourceSha256,
                                     job.scene.observer, job.seedValue(), job.tracer.specialisedFeatures,

@@ -183,6 +183,11 @@ double stateIrradiancePerCount(const IrradianceScale& scale, uint64_t beams);
 // The EXR header the renders write (spectrace:beams etc.).
 ImageMetadata renderMetadata(const Scene& scene, const std::string& device, bool aimed, uint64_t seed,
                              uint64_t firstBeam, uint64_t beamsDone, double wallSeconds);
+// A finished image written as render() writes it: the output's folder
+// created, the PNG preview beside it when asked for, then the EXR. Throws
+// OutputError. (Check the path first with checkOutputPath.)
+void writeRenderImage(const std::filesystem::path& output, const RenderImage& image, const ImageMetadata& metadata,
+                      bool png);
 // Whether `exr` is a complete render of `beams` beams: it reads, and its
 // spectrace:beams attribute says so. False for a missing or broken file.
 bool outputIsComplete(const std::filesystem::path& exr, uint64_t beams);
