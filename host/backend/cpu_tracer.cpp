@@ -76,25 +76,45 @@ inline void recordBeamsBody(device::BeamKernel& kernel, uint64_t first, uint32_t
   for (uint32_t i = 0; i < count; ++i) records[i] = kernel.record(first + i);
 }
 
-__attribute__((flatten)) uint64_t traceBlockBaseline(device::BeamKernel& kernel, CountQueues& queues,
-                                                     uint64_t firstBeam, uint64_t from, uint64_t to,
-                                                     uint32_t profileStage) {
+// flatten inlines the whole kernel into each of the four entry points below,
+// which is what makes the CPU reference fast. Under AddressSanitizer it
+// makes this one file take over four minutes to compile (four instrumented
+// copies of the kernel), and speed is not what that build is for: there the
+// entry points call the kernel as compiled once.
+// (GCC says so with __SANITIZE_ADDRESS__, clang with __has_feature.)
+#if defined(__SANITIZE_ADDRESS__)
+#define SPECTRACE_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SPECTRACE_UNDER_ASAN 1
+#endif
+#endif
+#if defined(SPECTRACE_UNDER_ASAN)
+#define SPECTRACE_FLATTEN
+#else
+#define SPECTRACE_FLATTEN __attribute__((flatten))
+#endif
+
+SPECTRACE_FLATTEN uint64_t traceBlockBaseline(device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam,
+                                              uint64_t from, uint64_t to, uint32_t profileStage) {
   return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
 }
-__attribute__((flatten)) void recordBeamsBaseline(device::BeamKernel& kernel, uint64_t first, uint32_t count,
-                                                  device::BeamRecord* records) {
+SPECTRACE_FLATTEN void recordBeamsBaseline(device::BeamKernel& kernel, uint64_t first, uint32_t count,
+                                           device::BeamRecord* records) {
   recordBeamsBody(kernel, first, count, records);
 }
 
 #if defined(__x86_64__)
 #define SPECTRACE_HAS_X86_64_V3 1
-__attribute__((flatten, target("arch=x86-64-v3"))) uint64_t traceBlockV3(device::BeamKernel& kernel, CountQueues& queues,
-                                                                         uint64_t firstBeam, uint64_t from, uint64_t to,
-                                                                         uint32_t profileStage) {
+SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) uint64_t traceBlockV3(device::BeamKernel& kernel,
+                                                                                  CountQueues& queues,
+                                                                                  uint64_t firstBeam, uint64_t from,
+                                                                                  uint64_t to, uint32_t profileStage) {
   return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
 }
-__attribute__((flatten, target("arch=x86-64-v3"))) void recordBeamsV3(device::BeamKernel& kernel, uint64_t first,
-                                                                      uint32_t count, device::BeamRecord* records) {
+SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) void recordBeamsV3(device::BeamKernel& kernel,
+                                                                               uint64_t first, uint32_t count,
+                                                                               device::BeamRecord* records) {
   recordBeamsBody(kernel, first, count, records);
 }
 #else
