@@ -7,6 +7,7 @@
 
 #include "cameras/bare_sensor.h"
 #include "cameras/pinhole.h"
+#include "cameras/thin_lens.h"
 
 // Where a beam from beyond the camera's front plane, travelling towards -z,
 // crosses the sensor plane, if the model lets it through; `flipped`: the
@@ -14,8 +15,9 @@
 // upright.
 FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool) flipped) {
   uint type = SPECTRACE_CAMERA_TYPE;
-  flipped = type == kCameraPinhole;
+  flipped = type == kCameraPinhole || type == kCameraThinLens;
   if (type == kCameraPinhole) return pinholeCrossing(origin, direction, onSensor);
+  if (type == kCameraThinLens) return thinLensCrossing(origin, direction, onSensor);
   return bareSensorCrossing(origin, direction, onSensor);
 }
 
@@ -25,7 +27,18 @@ FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool
 FN vec3 cameraConnectionPoint(float u, float v, OUT(float) area) {
   uint type = SPECTRACE_CAMERA_TYPE;
   if (type == kCameraPinhole) return pinholeConnectionPoint(u, v, area);
+  if (type == kCameraThinLens) return thinLensConnectionPoint(u, v, area);
   return bareSensorConnectionPoint(u, v, area);
+}
+
+// A camera path's direction into the scene from entrance point `entrance`,
+// for the sensor point `onSensor` (the unit vector `throughEntrance` points
+// from it to `entrance`): where the light arriving at that sensor point
+// through that entrance point comes from.
+FN vec3 cameraPathDirection(vec3 onSensor, vec3 entrance, vec3 throughEntrance) {
+  uint type = SPECTRACE_CAMERA_TYPE;
+  if (type == kCameraThinLens) return thinLensPathDirection(onSensor, entrance);
+  return throughEntrance;
 }
 
 #endif  // SPECTRACE_CAMERA_H

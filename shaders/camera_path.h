@@ -1,7 +1,8 @@
 // Camera paths: the camera estimator (pbrt-v4's path, Mitsuba 3's path
 // integrator, with next-event estimation), in the film's units, beside the
 // light paths (trace.h). A path starts at a uniform point of a pixel of the
-// stored window and a uniform point of the pinhole's disk, and goes through
+// stored window and a uniform point of the camera's entrance (a pinhole's or
+// a thin lens's disk), and goes through
 // the objects with the same materials as beams. At each diffuse vertex it
 // samples a light (light_arrival.h); before any diffuse vertex it sees the
 // emitters it crosses.
@@ -105,9 +106,14 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
   float apertureArea;
   vec3 origin = cameraConnectionPoint(uniformFromWord(start.z), uniformFromWord(start.w), apertureArea);
   PRECISE vec3 toAperture = origin - onSensor;
-  PRECISE vec3 direction = toAperture * (1.0f / sqrt(dot3(toAperture, toAperture)));
+  PRECISE vec3 throughAperture = toAperture * (1.0f / sqrt(dot3(toAperture, toAperture)));
+  vec3 direction = cameraPathDirection(onSensor, origin, throughAperture);
   // The geometry term between the sensor and the aperture's planes,
-  // cos^4 / distance^2, over their densities (cameraPathScale).
+  // cos^4 / distance^2, over their densities (cameraPathScale). Through a
+  // lens, cos is the scene side's: the solid angle of the light that a
+  // sensor area dA receives through a lens point is cos^3 dA / s^2
+  // (its slope changes by dA / s^2), which, times the cosine at the lens,
+  // is the pinhole's cos^4 / s^2 with that angle.
   PRECISE float cosSq = direction.z * direction.z;
   PRECISE float throughput = cosSq * cosSq * constants.cameraPathScale * light.cameraPathWeight;
   bool afterDiffuse = false;

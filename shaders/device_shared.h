@@ -94,6 +94,7 @@ SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit
 // in shaders/cameras/<model>.h, one host unit in host/camera/<model>_camera.cpp.
 SPECTRACE_CONSTANT uint kCameraBareSensor = 0;
 SPECTRACE_CONSTANT uint kCameraPinhole = 1;
+SPECTRACE_CONSTANT uint kCameraThinLens = 2;
 SPECTRACE_CONSTANT uint kCameraTypeAtRunTime = 0xFFFFFFFFu;  // kSpecCameraType: read constants.cameraType
 
 // Specialisation constant ids. Every pipeline has the workgroup size; the

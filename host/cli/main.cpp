@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   renderCmd
       ->add_option("--estimator", render.estimator,
                    "Which paths count: light (beams from the lights, the reference), camera (paths from the pixels, "
-                   "sampling the lights at diffuse surfaces; needs a pinhole) or both, each path of light counted by "
+                   "sampling the lights at diffuse surfaces; needs a pinhole or a lens) or both, each path of light counted by "
                    "one of them")
       ->check(CLI::IsMember({"light", "camera", "both"}))
       ->type_name("ESTIMATOR")

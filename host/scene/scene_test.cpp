@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera/pinhole_camera.h"
+#include "camera/thin_lens_camera.h"
 #include "json/input_file.h"
 
 namespace spectrace {
@@ -375,6 +376,37 @@ TEST_F(SceneTest, Sha256OfKnownStrings) {
   EXPECT_EQ(parseScene(text, dir_ / "mem.json").sourceSha256, sceneSha256Hex(text));
   // A file's digest is of its exact bytes: whitespace changes it.
   EXPECT_NE(load(minimalScene(), "a.json").sourceSha256, loadScene(write("b.json", minimalScene().dump(4))).sourceSha256);
+}
+
+// The thin lens replaces the pinhole: its values, the lens distance from
+// 1/f = 1/d + 1/s, and its errors, each naming the field.
+TEST_F(SceneTest, ThinLensParsesAndItsErrorsNameTheField) {
+  json j = exampleScene();
+  j["camera"].erase("pinhole");
+  j["camera"]["thin_lens"] = {{"focal_length_m", 0.05}, {"aperture_radius_m", 0.01}, {"focus_distance_m", 2.0}};
+  const Scene s = load(j);
+  EXPECT_EQ(pinholeOf(s.camera), nullptr);
+  const ThinLens* lens = thinLensOf(s.camera);
+  ASSERT_NE(lens, nullptr);
+  EXPECT_EQ(lens->focalLengthM, 0.05);
+  EXPECT_EQ(lens->apertureRadiusM, 0.01);
+  EXPECT_EQ(lens->focusDistanceM, 2.0);
+  EXPECT_NEAR(1.0 / lens->focusDistanceM + 1.0 / lens->lensDistanceM(), 1.0 / lens->focalLengthM, 1e-12);
+  EXPECT_EQ(s.camera.model->frontZ(), lens->lensDistanceM());
+  EXPECT_TRUE(s.camera.model->imageFlipped());
+
+  expectMutationError("/camera/thin_lens/focus_distance_m", 0.05, "/camera/thin_lens/focus_distance_m",
+                      {"must exceed focal_length_m", "no real image", "(got 0.05)"}, j);
+  expectMutationError("/camera/thin_lens/focus_distance_m", 0.02, "/camera/thin_lens/focus_distance_m",
+                      {"must exceed focal_length_m"}, j);
+  expectMutationError("/camera/thin_lens/aperture_radius_m", -1, "/camera/thin_lens/aperture_radius_m", {"> 0"}, j);
+  expectMutationError("/camera/thin_lens/focal_length_m", "long", "/camera/thin_lens/focal_length_m", {"> 0"}, j);
+  expectMutationError("/camera/thin_lens/f_number", 2, "/camera/thin_lens/f_number", {"unknown key"}, j);
+  expectRemovalError("/camera/thin_lens/aperture_radius_m", "/camera/thin_lens/aperture_radius_m",
+                     {"missing required field"}, j);
+  // One model before the sensor.
+  j["camera"]["pinhole"] = {{"distance_m", 0.05}, {"radius_m", 0.001}};
+  expectError(j, "/camera/thin_lens", {"not both", "pinhole", "thin_lens"});
 }
 
 TEST_F(SceneTest, ExactMessageFormat) {
