@@ -26,8 +26,7 @@ FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool
 // model's entrance, uniform over it, and the entrance's area.
 FN vec3 cameraConnectionPoint(float u, float v, OUT(float) area) {
   uint type = SPECTRACE_CAMERA_TYPE;
-  if (type == kCameraPinhole) return pinholeConnectionPoint(u, v, area);
-  if (type == kCameraThinLens) return thinLensConnectionPoint(u, v, area);
+  if (type == kCameraPinhole || type == kCameraThinLens) return entranceDiskPoint(u, v, area);
   return bareSensorConnectionPoint(u, v, area);
 }
 

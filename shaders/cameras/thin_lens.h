@@ -1,11 +1,14 @@
 // The thin lens (host/camera/thin_lens_camera.cpp): an ideal lens disk at
 // cameraFrontZ = s in front of the sensor's centre, of radius squared
-// cameraParams.x, focused at distance d; cameraParams.y = 1 - s/f = -s/d.
+// cameraParams.x (cameras/entrance_disk.h), focused at distance d;
+// cameraParams.y = 1 - s/f = -s/d. Camera connections end on a uniform
+// point of the disk with the pinhole's weight: the ideal lens passes all
+// the flux that reaches the point.
 // Its image is inverted on the sensor.
 #ifndef SPECTRACE_CAMERAS_THIN_LENS_H
 #define SPECTRACE_CAMERAS_THIN_LENS_H
 
-FN float thinLensRadiusSq() { return constants.cameraParams.x; }
+#include "cameras/entrance_disk.h"
 
 // Where a beam from beyond the lens plane travelling towards -z lands on
 // the sensor, when it passes the lens disk: at lens point p with slope
@@ -13,26 +16,13 @@ FN float thinLensRadiusSq() { return constants.cameraParams.x; }
 // slope m meets the focal plane where every beam of that slope does).
 FN bool thinLensCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor) {
   onSensor = vec2(0.0f, 0.0f);
-  PRECISE float ta = (origin.z - constants.cameraFrontZ) / -direction.z;
-  PRECISE float ax = origin.x + ta * direction.x;
-  PRECISE float ay = origin.y + ta * direction.y;
-  if (!(ax * ax + ay * ay <= thinLensRadiusSq())) return false;
+  vec2 p;
+  if (!crossesEntranceDisk(origin, direction, p)) return false;
   PRECISE float ts = constants.cameraFrontZ / -direction.z;
-  PRECISE float hx = ax * constants.cameraParams.y + ts * direction.x;
-  PRECISE float hy = ay * constants.cameraParams.y + ts * direction.y;
+  PRECISE float hx = p.x * constants.cameraParams.y + ts * direction.x;
+  PRECISE float hy = p.y * constants.cameraParams.y + ts * direction.y;
   onSensor = vec2(hx, hy);
   return true;
-}
-
-// A camera connection's end: a uniform point of the lens disk, and the
-// disk's area (the density's inverse). The connection's weight is the
-// pinhole's: the ideal lens passes all the flux that reaches the point.
-FN vec3 thinLensConnectionPoint(float u, float v, OUT(float) area) {
-  PRECISE float radius = sqrt(thinLensRadiusSq());
-  vec2 disk = sampleDisk(u, v, radius);
-  PRECISE float diskArea = 3.14159265358979f * thinLensRadiusSq();
-  area = diskArea;
-  return vec3(disk.x, disk.y, constants.cameraFrontZ);
 }
 
 // The inverse of the crossing for a camera path: the light that reaches
