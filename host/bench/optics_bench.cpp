@@ -156,6 +156,7 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
   };
   const Scene prism = bench.objects ? loadScene(bench.scenesDir / "prism.json") : Scene{};
   const Scene colorChecker = bench.objects ? loadScene(bench.scenesDir / "colorchecker.json") : Scene{};
+  const Scene thinLens = bench.objects ? loadScene(bench.scenesDir / "thin_lens.json") : Scene{};
   // Two variants of one scene, measured against one reference (the first
   // variant's mean), so their FOM ratio is a ratio of squared error x time.
   struct Variant {
@@ -209,6 +210,13 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
       // Connection against analog, analog at ten times the beams.
       // (Light paths only: camera paths would count every path both count.)
       compareVariants(colorChecker, "colorchecker", {"connect", 2'000'000, [](RenderOptions& o) { o.plan.cameraPaths = false; }},
+                      {"analog", 20'000'000, [](RenderOptions& o) {
+                         o.plan.connect = false;
+                         o.plan.cameraPaths = false;
+                       }},
+                      *device);
+      // The same through the thin lens (f/2, three depths).
+      compareVariants(thinLens, "thin lens", {"connect", 2'000'000, [](RenderOptions& o) { o.plan.cameraPaths = false; }},
                       {"analog", 20'000'000, [](RenderOptions& o) {
                          o.plan.connect = false;
                          o.plan.cameraPaths = false;
