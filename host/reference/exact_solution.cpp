@@ -451,6 +451,9 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
   const int n = std::max(options.quadratureNodes, 1);
   const Pinhole* aperture = pinholeOf(camera);
   const bool pinhole = aperture && aperture->distanceM > 0.0;
+  // Closed forms for the bare sensor and the pinhole only: any other model
+  // (a lens) in front of the sensor would be taken for a bare sensor.
+  if (!pinhole && camera.model->frontZ() != 0.0) return std::nullopt;
   const double zMin = pinhole ? aperture->distanceM : 0.0;  // beams must start beyond this plane
 
   ExactImage image;

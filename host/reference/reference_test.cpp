@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "camera/thin_lens_camera.h"
 #include "colour/colour.h"
 #include "compile/compile_scene.h"
 #include "reference/exact_solution.h"
@@ -534,6 +535,10 @@ TEST(ReferenceScenes, UnrecognisedConfigurationsAreRefused) {
   scene.lights[0].type = LightType::Spot;
   scene.lights[0].direction = {0, 0, 1};
   scene.lights[0].coneHalfAngleDeg = 30;
+  EXPECT_FALSE(exactSolution(scene).has_value());
+  // The solver knows the bare sensor and the pinhole; a lens is neither.
+  scene = referenceScene("point_on_axis");
+  scene.camera.model = thinLensModel({0.05, 0.01, 1.0});
   EXPECT_FALSE(exactSolution(scene).has_value());
   scene = referenceScene("pinhole_rect");
   scene.lights.push_back(referenceScene("point_on_axis").lights[0]);
