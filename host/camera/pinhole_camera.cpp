@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_types.h"
+#include "camera/entrance_disk_model.h"
 #include "camera/world_limits.h"
 #include "device_shared.h"
 
@@ -20,9 +21,9 @@ namespace {
 
 namespace jf = json_fields;
 
-class PinholeModel final : public CameraModel {
+class PinholeModel final : public EntranceDiskModel {
  public:
-  explicit PinholeModel(const Pinhole& p) : pinhole_(p) {}
+  explicit PinholeModel(const Pinhole& p) : EntranceDiskModel(p.distanceM, p.radiusM, 1.0, "pinhole"), pinhole_(p) {}
   const Pinhole& pinhole() const { return pinhole_; }
 
   void validate(const CameraFieldCheck& check) const override {
@@ -35,45 +36,7 @@ class PinholeModel final : public CameraModel {
     c.cameraFrontZ = float(pinhole_.distanceM);
     c.cameraParams = glm::vec4(float(pinhole_.radiusM * pinhole_.radiusM), 0.0f, 0.0f, 0.0f);
   }
-  double frontZ() const override { return pinhole_.distanceM; }
   const char* frontName() const override { return "the pinhole's aperture plane"; }
-  std::string beamMissesBecause(const Camera&, const glm::dvec2& centre, double reach) const override {
-    if (!(glm::length(centre) < reach + pinhole_.radiusM)) return "its beam misses the pinhole";
-    return "";
-  }
-  EntranceSphere entranceSphere(const Camera&) const override {
-    return {{0.0, 0.0, pinhole_.distanceM}, pinhole_.radiusM};
-  }
-  // A beam from P (height h = P.z - D > 0) through the aperture point A
-  // hits H = A (1 + D/h) - P_xy D/h, inside the disk about -P_xy D/h of
-  // radius r (1 + D/h). Over a convex emitter with h > 0 throughout,
-  // -P_xy D/h stays in the hull of its corners' images (a perspective map
-  // keeps segments straight), and 1 + D/h <= 1 + D/h_min.
-  std::optional<SensorBox> reachOnSensor(const EmitterReach& emitter) const override {
-    const double d = pinhole_.distanceM, r = pinhole_.radiusM;
-    glm::dvec2 lo(INFINITY), hi(-INFINITY);
-    double hMin = INFINITY;
-    for (const glm::dvec3& p : emitter.corners) {
-      const double h = p.z - d;
-      if (!(h > 0.0)) return std::nullopt;  // part of the emitter at or behind the aperture plane
-      hMin = std::min(hMin, h);
-      const glm::dvec2 centre = -glm::dvec2(p.x, p.y) * (d / h);
-      lo = glm::min(lo, centre);
-      hi = glm::max(hi, centre);
-    }
-    const double blur = r * (1.0 + d / hMin);
-    return SensorBox{lo - blur, hi + blur};
-  }
-  bool imageFlipped() const override { return true; }
-  std::optional<double> cameraPathEntranceAreaM2() const override {
-    return M_PI * pinhole_.radiusM * pinhole_.radiusM;
-  }
-  // Ten times the slack (4e-7, shaders/beam_math.h: SPECTRACE_AIM_SLACK)
-  // by which float rounding widens aimed cones. Below it, whether a beam
-  // passes the disk is decided by the rounding of float positions and
-  // directions (about 6e-8 of the distance) rather than by the disk: a
-  // 1e-9 m pinhole at 1.1 m gave 85 times its irradiance, 1e-7 m 1.16.
-  double smallestEntranceSine() const override { return 4.0e-6; }
 
  private:
   Pinhole pinhole_;

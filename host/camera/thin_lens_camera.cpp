@@ -19,6 +19,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/camera_types.h"
+#include "camera/entrance_disk_model.h"
 #include "camera/world_limits.h"
 #include "device_shared.h"
 
@@ -27,9 +28,13 @@ namespace {
 
 namespace jf = json_fields;
 
-class ThinLensModel final : public CameraModel {
+class ThinLensModel final : public EntranceDiskModel {
  public:
-  explicit ThinLensModel(const ThinLens& lens) : lens_(lens) {}
+  // k = 1 - s/f = -s/d: the lens point's share of where a beam lands.
+  explicit ThinLensModel(const ThinLens& lens)
+      : EntranceDiskModel(lens.lensDistanceM(), lens.apertureRadiusM, -lens.lensDistanceM() / lens.focusDistanceM,
+                          "thin lens"),
+        lens_(lens) {}
   const ThinLens& lens() const { return lens_; }
 
   void validate(const CameraFieldCheck& check) const override {
@@ -56,43 +61,7 @@ class ThinLensModel final : public CameraModel {
     c.cameraParams = glm::vec4(float(lens_.apertureRadiusM * lens_.apertureRadiusM), float(-s / lens_.focusDistanceM),
                                0.0f, 0.0f);
   }
-  double frontZ() const override { return lens_.lensDistanceM(); }
   const char* frontName() const override { return "the thin lens's plane"; }
-  std::string beamMissesBecause(const Camera&, const glm::dvec2& centre, double reach) const override {
-    if (!(glm::length(centre) < reach + lens_.apertureRadiusM)) return "its beam misses the thin lens";
-    return "";
-  }
-  EntranceSphere entranceSphere(const Camera&) const override {
-    return {{0.0, 0.0, lens_.lensDistanceM()}, lens_.apertureRadiusM};
-  }
-  // A beam from P (height h = P.z - s > 0) through lens point A lands at
-  // A (1 - s/f + s/h) - P_xy s/h: inside the disk about -P_xy s/h of radius
-  // a |1 - s/f + s/h|. Over a convex emitter, -P_xy s/h stays in the hull
-  // of its corners' images (as for the pinhole), and the radius, monotone
-  // in 1/h, is largest at the least or the greatest height.
-  std::optional<SensorBox> reachOnSensor(const EmitterReach& emitter) const override {
-    const double s = lens_.lensDistanceM(), a = lens_.apertureRadiusM, k = -s / lens_.focusDistanceM;
-    glm::dvec2 lo(INFINITY), hi(-INFINITY);
-    double hMin = INFINITY, hMax = 0.0;
-    for (const glm::dvec3& p : emitter.corners) {
-      const double h = p.z - s;
-      if (!(h > 0.0)) return std::nullopt;  // part of the emitter at or behind the lens plane
-      hMin = std::min(hMin, h);
-      hMax = std::max(hMax, h);
-      const glm::dvec2 centre = -glm::dvec2(p.x, p.y) * (s / h);
-      lo = glm::min(lo, centre);
-      hi = glm::max(hi, centre);
-    }
-    const double blur = a * std::max(std::abs(k + s / hMin), std::abs(k + s / hMax));
-    return SensorBox{lo - blur, hi + blur};
-  }
-  bool imageFlipped() const override { return true; }
-  std::optional<double> cameraPathEntranceAreaM2() const override {
-    return M_PI * lens_.apertureRadiusM * lens_.apertureRadiusM;
-  }
-  // As the pinhole's (pinhole_camera.cpp): below it float rounding, not the
-  // disk, decides which beams pass.
-  double smallestEntranceSine() const override { return 4.0e-6; }
 
  private:
   ThinLens lens_;
