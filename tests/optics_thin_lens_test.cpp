@@ -22,6 +22,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "camera/thin_lens_camera.h"
+#include "reference/exact_solution.h"
 #include "render/renderer.h"
 #include "support/object_scenes.h"
 #include "support/render_comparison.h"
@@ -85,38 +86,21 @@ std::pair<int, int> pixelOf(const Camera& camera, glm::dvec2 x) {
 
 // The share of a point's isotropic flux that crosses the lens disk: the
 // solid angle of the disk from P (height h over the lens plane, offset
-// P_xy from its axis) over 4 pi, by Gauss-Legendre in polar coordinates
-// about the axis (the integrand h / r^3 is smooth over the disk).
+// P_xy from its axis) over 4 pi, by Gauss-Legendre in the radius and equal
+// steps in the angle about the axis (the integrand h / r^3 is smooth over
+// the disk).
 double diskShare(const glm::dvec3& pointOverLens, double radius) {
-  constexpr int kRadial = 48, kAngular = 192;
-  // Gauss-Legendre nodes on [0, 1] by Newton on P_n.
-  std::vector<double> x(kRadial), w(kRadial);
-  for (int i = 0; i < kRadial; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (kRadial + 0.5)), dp = 0.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= kRadial; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = kRadial * (z * p1 - p0) / (z * z - 1.0);
-      const double step = p1 / dp;
-      z -= step;
-      if (std::abs(step) < 1e-16) break;
-    }
-    x[i] = 0.5 * (1.0 - z);
-    w[i] = 1.0 / ((1.0 - z * z) * dp * dp) * 2.0 * 0.5;
-  }
+  constexpr int kAngular = 192;
+  const GaussLegendreRule& g = gaussLegendre(48);  // on [-1, 1]
   const double h = pointOverLens.z;
   double sum = 0.0;
-  for (int i = 0; i < kRadial; ++i) {
-    const double r = radius * x[i];
+  for (size_t i = 0; i < g.node.size(); ++i) {
+    const double r = radius * 0.5 * (g.node[i] + 1.0), w = 0.5 * g.weight[i];
     for (int j = 0; j < kAngular; ++j) {
       const double phi = 2.0 * kPi * (j + 0.5) / kAngular;
       const double dx = r * std::cos(phi) - pointOverLens.x, dy = r * std::sin(phi) - pointOverLens.y;
       const double d2 = h * h + dx * dx + dy * dy;
-      sum += w[i] * radius * r * (2.0 * kPi / kAngular) * h / (d2 * std::sqrt(d2));
+      sum += w * radius * r * (2.0 * kPi / kAngular) * h / (d2 * std::sqrt(d2));
     }
   }
   return sum / (4.0 * kPi);
@@ -182,9 +166,11 @@ TEST(OpticsThinLens, PointsInFocusLandInTheirImagePixelWithTheFluxTheLensSubtend
     EXPECT_LT(sigma, 0.01 * expected) << "too few beams for the check to mean anything";
   }
   // Every count lands in one of the two image pixels.
-  for (size_t pixel = 0; pixel < e.irradiance.size(); ++pixel)
-    if (std::find(imagePixels.begin(), imagePixels.end(), pixel) == imagePixels.end())
+  for (size_t pixel = 0; pixel < e.irradiance.size(); ++pixel) {
+    if (std::find(imagePixels.begin(), imagePixels.end(), pixel) == imagePixels.end()) {
       EXPECT_EQ(e.irradiance[pixel], 0.0) << "pixel " << pixel << " holds counts outside the image points";
+    }
+  }
 }
 
 // --- 2. a point out of focus ----------------------------------------------------------
@@ -219,8 +205,7 @@ TEST(OpticsThinLens, OutOfFocusPointFillsItsBlurDiskAsTheClosedFormSays) {
     return power / (4.0 * kPi) * u / ((u * u + q2) * std::sqrt(u * u + q2)) * (a / blur) * (a / blur);
   };
   // 4 x 4 Gauss-Legendre over a pixel (the integrand is smooth there).
-  const double gx[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
-  const double gw[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+  const GaussLegendreRule& g = gaussLegendre(4);  // on [-1, 1]
   double chi2 = 0.0, worst = 0.0, total = 0.0;
   int inside = 0;
   for (int row = 0; row < camera.pixelsY; ++row)
@@ -228,20 +213,16 @@ TEST(OpticsThinLens, OutOfFocusPointFillsItsBlurDiskAsTheClosedFormSays) {
       const size_t pixel = size_t(row) * camera.pixelsX + col;
       total += e.irradiance[pixel] * pw * pw;
       const glm::dvec2 c = pixelCentre(camera, col, row);
-      double nearest = INFINITY, farthest = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        const glm::dvec2 corner = c + 0.5 * pw * glm::dvec2(k & 1 ? 1 : -1, k & 2 ? 1 : -1);
-        farthest = std::max(farthest, glm::length(corner));
-      }
-      const glm::dvec2 closest = glm::max(glm::abs(c) - 0.5 * pw, glm::dvec2(0.0));
-      nearest = glm::length(closest);
+      const double nearest = glm::length(glm::max(glm::abs(c) - 0.5 * pw, glm::dvec2(0.0)));
+      const double farthest = glm::length(glm::abs(c) + 0.5 * pw);
       if (nearest > blur + margin) {
         EXPECT_EQ(e.irradiance[pixel], 0.0) << "pixel (" << col << ", " << row << ") lies outside the blur disk";
       } else if (farthest < blur - margin) {
         double expected = 0.0;
-        for (int i = 0; i < 4; ++i)
-          for (int j = 0; j < 4; ++j)
-            expected += gw[i] * gw[j] * irradianceAt(c.x + (gx[i] - 0.5) * pw, c.y + (gx[j] - 0.5) * pw);
+        for (size_t i = 0; i < g.node.size(); ++i)
+          for (size_t j = 0; j < g.node.size(); ++j)
+            expected += 0.25 * g.weight[i] * g.weight[j] *
+                        irradianceAt(c.x + 0.5 * g.node[i] * pw, c.y + 0.5 * g.node[j] * pw);
         // Poisson-like counts: Var(E) = v E with the expected E (thousands
         // of counts a pixel, so z is Gaussian).
         const double sigma = std::sqrt(e.variancePerMean[pixel] * expected);

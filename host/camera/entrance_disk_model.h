@@ -27,6 +27,10 @@ class EntranceDiskModel : public CameraModel {
   std::optional<double> cameraPathEntranceAreaM2() const override;
   double smallestEntranceSine() const override;
 
+ protected:
+  double radiusM() const { return radiusM_; }
+  double k() const { return k_; }
+
  private:
   double distanceM_, radiusM_, k_;
   const char* name_;  // "pinhole", "thin lens": for messages

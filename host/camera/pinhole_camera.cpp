@@ -4,13 +4,6 @@
 // shaders/cameras/pinhole.h is its kernel.
 #include "camera/pinhole_camera.h"
 
-#include <algorithm>
-#include <cmath>
-
-#include <fmt/format.h>
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-
 #include "camera/camera_types.h"
 #include "camera/entrance_disk_model.h"
 #include "camera/world_limits.h"

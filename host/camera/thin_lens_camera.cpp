@@ -11,12 +11,9 @@
 // upright. shaders/cameras/thin_lens.h is its kernel.
 #include "camera/thin_lens_camera.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
 
 #include "camera/camera_types.h"
 #include "camera/entrance_disk_model.h"
@@ -55,11 +52,9 @@ class ThinLensModel final : public EntranceDiskModel {
   // cameraParams.x: the aperture's radius squared; .y: the lens point's
   // coefficient in the crossing, 1 - s/f = -s/d (computed in double).
   void pack(device::TraceConstants& c, SceneData&) const override {
-    const double s = lens_.lensDistanceM();
     c.cameraType = device::kCameraThinLens;
-    c.cameraFrontZ = float(s);
-    c.cameraParams = glm::vec4(float(lens_.apertureRadiusM * lens_.apertureRadiusM), float(-s / lens_.focusDistanceM),
-                               0.0f, 0.0f);
+    c.cameraFrontZ = float(frontZ());
+    c.cameraParams = glm::vec4(float(radiusM() * radiusM()), float(k()), 0.0f, 0.0f);
   }
   const char* frontName() const override { return "the thin lens's plane"; }
 
