@@ -93,6 +93,7 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
                         : fmt::format("light {} ({}, {}, {})", json_fields::jsonQuoted(light.name), light.label,
                                       unit.name, light.spdLabel);
     summary.powerW = light.powerW;
+    summary.powerLm = light.powerLm;
     const Spd clipped = light.spd.clipped(range.minNm, range.maxNm);
     const double inRange = clipped.lambdaNm.empty() ? 0.0 : clipped.integral();
     summary.inRangeShare = light.spd.fullIntegral > 0.0 ? std::min(1.0, inRange / light.spd.fullIntegral) : 0.0;
@@ -148,6 +149,12 @@ struct NamedLight {
   const Light& light;
   std::string pointer;  // e.g. "/lights/2"
 };
+// "power_w: 10 W", or "power_lm: 800 lm (11.7 W)": the field the file gave.
+std::string powerField(const Light& light) {
+  if (light.powerLm >= 0.0) return fmt::format("power_lm: {:g} lm ({:g} W)", light.powerLm, light.powerW);
+  return fmt::format("power_w: {:g} W", light.powerW);
+}
+
 NamedLight strongestLight(const Scene& scene, const CompiledScene& compiled) {
   size_t strongest = 0;
   for (size_t i = 1; i < compiled.summaries.size(); ++i)
@@ -175,9 +182,9 @@ void checkImageRange(const Scene& scene, const CompiledScene& compiled) {
   if (std::isfinite(brightest) && brightest < kBrightestImageValue) return;
   const auto [light, pointer] = strongestLight(scene, compiled);
   throw SceneError(fmt::format(
-      "{}: {}/power_w: {:g} W over pixels of {:g} m² can reach {:g} in XYZ, beyond the range of the image's float "
-      "channels (at most {:g}); use a smaller power_w or larger pixels",
-      sceneName(scene), pointer, light.powerW, area, brightest, kBrightestImageValue));
+      "{}: {}/{} over pixels of {:g} m² can reach {:g} in XYZ, beyond the range of the image's float "
+      "channels (at most {:g}); use a smaller power or larger pixels",
+      sceneName(scene), pointer, powerField(light), area, brightest, kBrightestImageValue));
 }
 
 // Camera, spectrum, observer and seed constants of the kernel.
@@ -277,9 +284,9 @@ void checkBeamScale(const Scene& scene, const CompiledScene& compiled, uint64_t 
   if (beams == 0 || (std::isfinite(perCount) && float(perCount) > 0.0f)) return;
   const auto [light, pointer] = strongestLight(scene, compiled);
   throw SceneError(fmt::format(
-      "{}: {}/power_w: {:g} W spread over {} beams gives {:g} W/m² per count, below the smallest float the image "
-      "can hold; use a larger power_w or fewer beams",
-      sceneName(scene), pointer, light.powerW, beams, perCount));
+      "{}: {}/{} spread over {} beams gives {:g} W/m² per count, below the smallest float the image "
+      "can hold; use a larger power or fewer beams",
+      sceneName(scene), pointer, powerField(light), beams, perCount));
 }
 
 CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptions& options) {

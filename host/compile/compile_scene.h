@@ -41,7 +41,8 @@ struct DeviceScene {
 // What became of one scene light, for messages and the bench.
 struct LightSummary {
   std::string label;       // e.g. "/lights/2 (disk, D65)", or with a name light "lamp" (/lights/2, disk, D65)
-  double powerW = 0.0;     // as given
+  double powerW = 0.0;     // as given, or from power_lm
+  double powerLm = -1.0;   // power_lm when given (Light::powerLm)
   double inRangeShare = 0.0;  // share of the emission inside the spectrum range
   double tracedPowerW = 0.0;  // powerW * inRangeShare
   bool traced = false;        // false: never sampled

@@ -34,6 +34,9 @@ struct Light {
   double radiusM = 0.0;           // disk, laser
   glm::dvec2 sizeM{0.0};          // rect: full width (along uAxis) and height
   double powerW = 0.0;            // total radiant flux of the whole emission
+  // power_lm when the file gave the luminous flux (powerW follows from it
+  // and the spd's luminous efficacy); negative when it gave power_w.
+  double powerLm = -1.0;
   std::string spdLabel;           // "D65", "blackbody 2700 K", "lamp.csv", ...
   std::filesystem::path spdFile;  // the CSV file the spd was read from (an input: never an output); else empty
   Spd spd;                        // resolved spectrum (relative units)

@@ -137,6 +137,9 @@ std::vector<std::string> planNotes(const Scene& scene, const CompiledScene& plan
       continue;
     }
     ++traced;
+    if (light.powerLm > 0.0)
+      notes.push_back(fmt::format("{}: {:g} lm is {:.5g} W ({:.5g} lm/W for its spectrum)", light.label, light.powerLm,
+                                  light.powerW, light.powerLm / light.powerW));
     if (light.aimed)
       notes.push_back(fmt::format("{}: beams aimed at the camera (largest weight {:.3g})", light.label,
                                   light.largestWeight));

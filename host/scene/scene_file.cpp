@@ -10,7 +10,7 @@
 //   observer  "CIE1931_2" | "CIE1964_10"                   optional
 //   camera    {position, look_at, up, sensor{width_m, height_m, pixels},
 //              pinhole{distance_m, radius_m}, exposure_s}  required
-//   lights    [ {type, name, power_w, spd, ...type fields} ] required, non-empty
+//   lights    [ {type, name, power_w or power_lm, spd, ...type fields} ] required, non-empty
 //   objects   [ {type, name, material, ...type fields} ]   optional (docs/objects.md)
 //             rect {center, normal, u_axis, size_m}, disk {center, normal,
 //             radius_m}, sphere {center, radius_m}, mesh {file (OBJ),
@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -32,6 +33,7 @@
 
 #include "json/input_file.h"
 #include "camera/camera_types.h"
+#include "colour/colour.h"
 #include "json/json_fields.h"
 #include "lights/light_type.h"
 #include "scene/object_field.h"
@@ -135,7 +137,7 @@ Camera parseCamera(const jf::Source& c, const Json& v, const std::string& p) {
 // typo such as "typ" before complaining that "type" is missing).
 struct LightKeys {
   Keys types;
-  Keys any = {"type", "name", "power_w", "spd"};
+  Keys any = {"type", "name", "power_w", "power_lm", "spd"};
 };
 
 const LightKeys& lightKeys() {
@@ -149,6 +151,40 @@ const LightKeys& lightKeys() {
     return k;
   }();
   return keys;
+}
+
+// The light's spd and its power: power_w (radiant flux, W) or power_lm
+// (luminous flux, lm), one of them. Lumens become watts through the spd's
+// luminous efficacy, 683 lm/W x ∫V·S / ∫S over the whole emission.
+void parseLightPower(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
+                     Light& light) {
+  // null stands for absent, so `--set /lights/0/power_w=null` can switch a
+  // light from watts to lumens.
+  const auto given = [&](const char* key) {
+    const Json* x = find(v, key);
+    return x && !x->is_null() ? x : nullptr;
+  };
+  const Json* watts = given("power_w");
+  const Json* lumens = given("power_lm");
+  if (watts && lumens) c.fail(child(p, "power_lm"), "a light's power is power_w (watts) or power_lm (lumens), not both");
+  if (!lumens)
+    light.powerW = jf::getNonNegative(
+        c, require(c, v, p, "power_w", " (radiant flux in watts; or power_lm, luminous flux in lumens)"),
+        child(p, "power_w"));
+  const double luminousFraction = parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
+  if (!lumens) return;
+  const std::string lp = child(p, "power_lm");
+  light.powerLm = jf::getNonNegative(c, *lumens, lp);
+  light.powerW = 0.0;
+  if (light.powerLm == 0.0) return;
+  if (!(luminousFraction > 0.0))
+    c.fail(lp, fmt::format("the spd ({}) has no power where the eye sees (V(λ) > 0, 360-830 nm), so lumens cannot set "
+                           "its power; give power_w",
+                           light.spdLabel));
+  light.powerW = light.powerLm / (kLumensPerWatt * luminousFraction);
+  if (!std::isfinite(light.powerW))
+    c.fail(lp, fmt::format("{:g} lm of this spd ({}, {:g} lm/W) is more watts than a double holds", light.powerLm,
+                           light.spdLabel, kLumensPerWatt * luminousFraction));
 }
 
 Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range) {
@@ -169,12 +205,11 @@ Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, c
     c.fail(child(p, "type"), fmt::format("unknown light type {}{} (valid types: {})", jf::jsonQuoted(type),
                                          jf::suggestion(type, keys.types), jf::joinKeys(keys.types)));
   light.type = unit->type;
-  Keys allowed = {"type", "name", "power_w", "spd"};
+  Keys allowed = {"type", "name", "power_w", "power_lm", "spd"};
   allowed.insert(allowed.end(), unit->keys.begin(), unit->keys.end());
   checkObject(c, v, p, allowed, fmt::format("a {} light", type));
   unit->parse(c, v, p, light);
-  light.powerW = jf::getNonNegative(c, require(c, v, p, "power_w", " (radiant flux in watts)"), child(p, "power_w"));
-  parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
+  parseLightPower(c, v, p, range, light);
   return light;
 }
 

@@ -249,7 +249,7 @@ void validateScene(const Scene& scene, const SceneChecker& c) {
     total += scene.lights[i].powerW;
   }
   if (!std::isfinite(total)) c.fail("/lights", "the total power_w of all lights overflows");
-  if (c.requireEmission && !(total > 0.0)) c.fail("/lights", "no light emits power: every power_w is 0");
+  if (c.requireEmission && !(total > 0.0)) c.fail("/lights", "no light emits power: every power_w (or power_lm) is 0");
 
   if (scene.objects.size() > size_t(kMaxObjects))
     c.fail("/objects", fmt::format("has {} objects; a scene has at most {}", scene.objects.size(), kMaxObjects));
