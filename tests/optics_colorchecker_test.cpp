@@ -30,9 +30,9 @@
 // The beam budget: one wavelength drawn from D65 gives each connection a
 // chromaticity scatter of 0.15-0.41 (x or y, per patch, computed from the
 // tables); the four stratified wavelengths a beam carries (the default)
-// bring the worst patch's standard error to 1.37e-4 at 224 million beams,
-// so 150 million (about half of which connect inside a patch) leave 5 sigma
-// at about 8.4e-4, under the tolerance. That is the CPU reference's part;
+// bring the worst patch's standard error to 1.37e-4 at 224 million beams
+// and 1.75e-4 at 150 million (about half of which connect inside a patch):
+// 5 sigma 8.8e-4, under the tolerance. That is the CPU reference's part;
 // lavapipe traces the first 4 million beams, which must give the CPU's film
 // bit for bit. At a smaller test scale (tests/support/test_scale.h) both
 // counts shrink and the tolerance grows as 1 / sqrt(beams), so it stays
