@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colour/colour.h"
+#include "reference/exact_solution.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "spectrum/spd.h"
@@ -152,12 +153,6 @@ TEST(LuminousPower, ErrorsNameTheFieldAndWhatIsWrong) {
   EXPECT_NE(text.find("lumens.json: /lights/0/power_lm"), std::string::npos) << text;
 }
 
-// Solid angle of the rectangle [x1,x2] x [y1,y2] (z = 0) from (0, 0, d).
-double rectangleSolidAngle(double x1, double x2, double y1, double y2, double d) {
-  const auto corner = [d](double a, double b) { return std::atan(a * b / (d * std::sqrt(a * a + b * b + d * d))); };
-  return corner(x2, y2) - corner(x1, y2) - corner(x2, y1) + corner(x1, y1);
-}
-
 // L lumens of D65 from a point 1 cm above the sensor: every pixel's Y is
 // L Ω / (4π A) lux in expectation, on both devices (the same film).
 TEST(LuminousPower, PointLightGivesTheIlluminanceItsLumensPredict) {
@@ -199,7 +194,7 @@ TEST(LuminousPower, PointLightGivesTheIlluminanceItsLumensPredict) {
   for (int row = 0; row < n; ++row) {
     for (int col = 0; col < n; ++col) {
       const double x1 = -0.5 * kSensor + col * pixel, y2 = 0.5 * kSensor - row * pixel;
-      const double omega = rectangleSolidAngle(x1, x1 + pixel, y2 - pixel, y2, kHeight);
+      const double omega = rectangleSolidAngle(x1, x1 + pixel, y2 - pixel, y2, 0.0, 0.0, kHeight);
       const double expected = kLumens * omega / (4.0 * M_PI * area);
       const double p = omega / (4.0 * M_PI);
       const double sigma = expected * std::sqrt((1.0 + cv2) / (double(beams) * p));
@@ -211,7 +206,8 @@ TEST(LuminousPower, PointLightGivesTheIlluminanceItsLumensPredict) {
       expectedTotal += expected * area;
     }
   }
-  const double omegaSensor = rectangleSolidAngle(-0.5 * kSensor, 0.5 * kSensor, -0.5 * kSensor, 0.5 * kSensor, kHeight);
+  const double omegaSensor = rectangleSolidAngle(-0.5 * kSensor, 0.5 * kSensor, -0.5 * kSensor, 0.5 * kSensor, 0.0, 0.0,
+                                                 kHeight);
   const double pSensor = omegaSensor / (4.0 * M_PI);
   const double sigmaTotal = expectedTotal * std::sqrt((1.0 + cv2) / (double(beams) * pSensor));
   std::printf("cv^2 %.3f; luminous flux on the sensor %.4f lm (expected %.4f, %+.2f sigma); worst pixel %.2f sigma\n",

@@ -171,20 +171,21 @@ void parseLightPower(const jf::Source& c, const Json& v, const std::string& p, c
     light.powerW = jf::getNonNegative(
         c, require(c, v, p, "power_w", " (radiant flux in watts; or power_lm, luminous flux in lumens)"),
         child(p, "power_w"));
-  const double luminousFraction = parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
+  const std::optional<double> blackbodyK = parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
   if (!lumens) return;
   const std::string lp = child(p, "power_lm");
   light.powerLm = jf::getNonNegative(c, *lumens, lp);
   light.powerW = 0.0;
   if (light.powerLm == 0.0) return;
-  if (!(luminousFraction > 0.0))
+  const double fraction = luminousFraction(light.spd, blackbodyK);
+  if (!(fraction > 0.0))
     c.fail(lp, fmt::format("the spd ({}) has no power where the eye sees (V(λ) > 0, 360-830 nm), so lumens cannot set "
                            "its power; give power_w",
                            light.spdLabel));
-  light.powerW = light.powerLm / (kLumensPerWatt * luminousFraction);
+  light.powerW = light.powerLm / (kLumensPerWatt * fraction);
   if (!std::isfinite(light.powerW))
     c.fail(lp, fmt::format("{:g} lm of this spd ({}, {:g} lm/W) is more watts than a double holds", light.powerLm,
-                           light.spdLabel, kLumensPerWatt * luminousFraction));
+                           light.spdLabel, kLumensPerWatt * fraction));
 }
 
 Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range) {

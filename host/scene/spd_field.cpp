@@ -54,28 +54,27 @@ Spd callSpd(const jf::Source& c, const std::string& ptr, F&& f) {
 // ∫ȳ·S / ∫S of a table that holds the whole emission (spdToXyz integrates
 // the product of the two piecewise-linear functions exactly; a line: ȳ at
 // its wavelength).
-double luminousFraction(const Spd& spd) {
+double tableLuminousFraction(const Spd& spd) {
   return spd.fullIntegral > 0.0 ? spdToXyz(spd, cie1931Observer())[1] / spd.fullIntegral : 0.0;
 }
 
-// A blackbody's table covers only the scene's range: the fraction comes
-// from one over the whole of ȳ's table instead (to < 1e-6, as every
-// blackbody table), over the exact total σT⁴/π. 0 when the radiance
-// underflows there (a body too cold to glow).
-double blackbodyLuminousFraction(double kelvin) {
+}  // namespace
+
+double luminousFraction(const Spd& spd, std::optional<double> blackbodyK) {
+  if (!blackbodyK) return tableLuminousFraction(spd);
+  // A table over the whole of ȳ's range instead (to < 1e-6, as every
+  // blackbody table), over the exact total σT⁴/π. 0 when the radiance
+  // underflows there (a body too cold to glow).
   const Observer& v = cie1931Observer();
   try {
-    return luminousFraction(makeBlackbodySpd(kelvin, v.lambdaNm.front(), v.lambdaNm.back()));
+    return tableLuminousFraction(makeBlackbodySpd(*blackbodyK, v.lambdaNm.front(), v.lambdaNm.back()));
   } catch (const SpdError&) {
     return 0.0;
   }
 }
 
-}  // namespace
-
 ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range) {
   ResolvedSpd out;
-  bool blackbody = false;  // its table is a window: luminousFraction is set with it
   static const Keys kForms = {"blackbody_k", "csv", "table", "lambda_nm", "line_nm"};
   static const char* kFormsHelp =
       "a CIE illuminant name such as \"D65\", or an object with one of: {\"blackbody_k\": K}, {\"csv\": \"file.csv\"}, "
@@ -120,8 +119,7 @@ ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p,
                                describe(v.at("blackbody_k"))));
       out.spd = callSpd(c, kp, [&] { return makeBlackbodySpd(kelvin, range.minNm, range.maxNm); });
       out.label = fmt::format("blackbody {} K", fmtNum(kelvin));
-      out.luminousFraction = blackbodyLuminousFraction(kelvin);
-      blackbody = true;
+      out.blackbodyK = kelvin;
     } else if (form == "csv") {
       checkObject(c, v, p, {"csv", "column"}, "a csv spd");
       std::string cp = child(p, "csv");
@@ -182,16 +180,16 @@ ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p,
   } else {
     c.fail(p, fmt::format("must be {} (got {})", kFormsHelp, describe(v)));
   }
-  if (!blackbody) out.luminousFraction = luminousFraction(out.spd);
   return out;
 }
 
-double parseSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range, Light& light) {
+std::optional<double> parseSpd(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
+                               Light& light) {
   ResolvedSpd resolved = resolveSpd(c, v, p, range);
   light.spd = std::move(resolved.spd);
   light.spdLabel = std::move(resolved.label);
   light.spdFile = std::move(resolved.file);
-  return resolved.luminousFraction;
+  return resolved.blackbodyK;
 }
 
 }  // namespace spectrace

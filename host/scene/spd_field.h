@@ -2,6 +2,7 @@
 // Inside the scene module: reading a spectrum field (a light's "spd", an
 // object's "reflectance").
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "json/json_fields.h"
@@ -14,11 +15,9 @@ struct ResolvedSpd {
   Spd spd;
   std::string label;           // "D65", "blackbody 2700 K", "csv lamp.csv", ...
   std::filesystem::path file;  // the CSV file it was read from, else empty
-  // ∫V·S / ∫S over the whole emission, V the CIE photopic curve (the 1931
-  // ȳ, whichever observer the scene names: lumens are defined by it). Times
-  // 683 lm/W it is the luminous efficacy of the radiation, which turns a
-  // light's power_lm into watts. 0 when nothing lies where V > 0.
-  double luminousFraction = 0.0;
+  // A blackbody's temperature: its table is only a window onto the
+  // emission (the scene's range), which luminousFraction must look past.
+  std::optional<double> blackbodyK;
 };
 
 // Resolves the spd value `v` at `ptr` (a CIE illuminant name or one of the
@@ -27,8 +26,16 @@ ResolvedSpd resolveSpd(const json_fields::Source& c, const json_fields::Json& v,
                        const SpectrumRange& range);
 
 // Resolves the spd value `v` at `ptr` into light.spd, light.spdLabel and
-// light.spdFile; returns its luminousFraction.
-double parseSpd(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr,
-                const SpectrumRange& range, Light& light);
+// light.spdFile; returns its blackbodyK.
+std::optional<double> parseSpd(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr,
+                               const SpectrumRange& range, Light& light);
+
+// ∫V·S / ∫S over the whole emission of `spd` (of the blackbody at
+// blackbodyK, whose table covers only the scene's range), V the CIE
+// photopic curve: the 1931 ȳ, whichever observer the scene names, since
+// lumens are defined by it. Times 683 lm/W it is the luminous efficacy of
+// the radiation, which turns a light's power_lm into watts. 0 when nothing
+// lies where V > 0. Computed when asked: only power_lm needs it.
+double luminousFraction(const Spd& spd, std::optional<double> blackbodyK);
 
 }  // namespace spectrace
