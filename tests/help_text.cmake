@@ -2,7 +2,7 @@
 # name (no bare TEXT: numbers, paths and devices say which), and the
 # defaults that are fixed values shown after '='.
 #   -DSPECTRACE=path -DREADME=path
-foreach(verb render merge batch bench)
+foreach(verb render merge batch bench measure)
   execute_process(COMMAND "${SPECTRACE}" ${verb} --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${verb} --help: exit code ${rc}:\n${out}${err}")

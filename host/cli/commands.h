@@ -82,6 +82,18 @@ struct MergeCommand {
 // Exit code 2 when the states cannot be merged (the message says which field differs).
 int runMerge(const MergeCommand& command);
 
+struct MeasureCommand {
+  std::filesystem::path exr;                   // any render's image
+  std::optional<std::string> region;           // "x0,y0,x1,y1": columns [x0, x1), rows [y0, y1) from the top
+  std::optional<std::filesystem::path> json;   // the statistics
+  std::optional<std::filesystem::path> csv;    // lux per pixel of the region
+  std::optional<std::filesystem::path> falseColour;  // PNG map with legend and isolux contours
+  std::optional<double> maxLux;                // the map's top (default: its maximum, rounded up)
+};
+// Illuminance statistics of a render (printed), and the files asked for.
+// Exit code 2 for an unreadable image, a bad region or output path.
+int runMeasure(const MeasureCommand& command);
+
 struct BenchCommand {
   uint64_t beams = uint64_t(1) << 25;   // throughput section, per device
   std::string devices;                  // "gpu", "cpu", device names; empty = all

@@ -176,6 +176,22 @@ int main(int argc, char** argv) {
       ->type_name("PATH");
   batchCmd->add_flag("!--no-pipeline-cache", batch.pipelineCache.enabled, "Neither read nor write a Vulkan pipeline cache file");
 
+  MeasureCommand measure;
+  auto* measureCmd = app.add_subcommand(
+      "measure", "Illuminance statistics of a render's image (lux from XYZ.Y): min, max, mean, U0, Ud");
+  measureCmd->add_option("exr", measure.exr, "A render's OpenEXR image")->required()->type_name("PATH");
+  measureCmd->add_option("--region", measure.region,
+                         "Pixels to measure: columns [x0, x1) and rows [y0, y1), rows from the top (default: all)")
+      ->type_name("x0,y0,x1,y1");
+  measureCmd->add_option("--json", measure.json, "Write the statistics as JSON")->type_name("PATH");
+  measureCmd->add_option("--csv", measure.csv, "Write the region's lux per pixel, rows from the top")->type_name("PATH");
+  measureCmd->add_option("--false-colour", measure.falseColour,
+                         "Write a false-colour PNG of the region with a lux legend and isolux contours")
+      ->type_name("PATH");
+  measureCmd->add_option("--max-lux", measure.maxLux,
+                         "The false-colour legend's top (default: the maximum rounded up to 1, 2, 2.5 or 5 x 10^n)")
+      ->type_name("LUX");
+
   auto* devicesCmd = app.add_subcommand("devices", "List Vulkan devices and the limits that matter here");
 
   BenchCommand bench;
@@ -240,6 +256,7 @@ int main(int argc, char** argv) {
     if (batchCmd->parsed()) return runBatch(batch, gCancel);
     if (mergeCmd->parsed()) return runMerge(merge);
     if (devicesCmd->parsed()) return runDevices();
+    if (measureCmd->parsed()) return runMeasure(measure);
     if (benchCmd->parsed()) return runBench(bench, gCancel);
   } catch (...) {
     const Failure failure = failureOf(std::current_exception());

@@ -69,4 +69,12 @@ ExrContents readExr(const std::filesystem::path& path);
 // the sRGB transfer curve. Also atomic (temp file + rename).
 void writePngPreview(const std::filesystem::path& path, const RenderImage& image);
 
+// An 8-bit sRGB PNG of `width` x `height` pixels, 3 bytes each, row-major
+// from the top (a false-colour map). Atomic, as above.
+void writePngRgb8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& bytes);
+
+// A text file (JSON, CSV), written atomically as the images are; `what`
+// names the format in messages.
+void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* what);
+
 }  // namespace spectrace

@@ -144,4 +144,14 @@ void writePngPreview(const std::filesystem::path& path, const RenderImage& image
   file.commit();
 }
 
+void writePngRgb8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& bytes) {
+  if (width <= 0 || height <= 0 || bytes.size() != std::size_t(width) * std::size_t(height) * 3)
+    throw ImageIoError("cannot write PNG " + path.string() + ": " + std::to_string(bytes.size()) + " bytes for " +
+                       std::to_string(width) + "x" + std::to_string(height) + " RGB pixels");
+  io_detail::AtomicFile file(path, "PNG");
+  PngSink sink{file.fd(), 0, {}};
+  if (!encodePng(sink, bytes.data(), width, height)) file.fail(sink.error);
+  file.commit();
+}
+
 }  // namespace spectrace
