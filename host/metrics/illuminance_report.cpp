@@ -80,7 +80,9 @@ std::string illuminanceJson(const IlluminanceStats& stats, PixelRegion region) {
 }
 
 std::string illuminanceText(const IlluminanceStats& stats, PixelRegion region) {
-  auto ratio = [](const std::optional<double>& r) { return r ? fmt::format("{:.4f}", *r) : std::string("undefined (no light)"); };
+  auto ratio = [](const std::optional<double>& r) {
+    return r ? fmt::format("{:.4f}", *r) : std::string("undefined (no light)");
+  };
   return fmt::format(
       "illuminance over columns [{}, {}) and rows [{}, {}) ({} pixels):\n"
       "  min  {:.6g} lx\n  max  {:.6g} lx\n  mean {:.6g} lx\n  U0 = min/mean {}\n  Ud = min/max  {}\n",

@@ -206,7 +206,8 @@ TEST(FalseColour, MapShowsBandsContoursAndLegend) {
   EXPECT_EQ(at(15, 4), (std::array<uint8_t, 3>{0, 0, 0}));   // pixel 1's right edge: the contour
   EXPECT_EQ(at(7, 4), bandColour(2, 10));                     // no contour inside band 2
   // The legend's swatches, top band first, below the title row.
-  for (int row = 0; row < 10; ++row) EXPECT_EQ(at(map.mapWidth + 8 + 7, 8 + (row + 1) * 16 + 7), bandColour(9 - row, 10));
+  for (int row = 0; row < 10; ++row)
+    EXPECT_EQ(at(map.mapWidth + 8 + 7, 8 + (row + 1) * 16 + 7), bandColour(9 - row, 10));
 }
 
 }  // namespace
