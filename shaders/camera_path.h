@@ -119,7 +119,7 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
   bool afterDiffuse = false;
   float rounding = uniformFromWord(spectral.w);
   for (uint vertex = 0u; vertex <= constants.maxBounces; ++vertex) {
-    ObjectHit hit;
+    ObjectHit hit = noObjectHit();
     bool metObject = SPECTRACE_OBJECTS && intersectObjects(origin, direction, 3.0e38f, false, hit);
     float reach = metObject ? hit.t : 3.0e38f;
     // A light path ends where it meets the camera's body; so does this.

@@ -12,6 +12,15 @@ struct ObjectHit {
   uint primitive;  // index into the primitives
 };
 
+// A hit that met nothing: where a walk may be skipped (no objects), the
+// variable still holds a value.
+FN ObjectHit noObjectHit() {
+  ObjectHit none;
+  none.t = 3.0e38f;
+  none.primitive = 0u;
+  return none;
+}
+
 // One kernel unit per primitive (host units: host/shapes/<kind>_shape.cpp),
 // chosen by the Primitive record's type.
 #include "shapes/shape_shared.h"

@@ -19,17 +19,10 @@
 #include "support/statistics.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
+#include "reference/exact_solution.h"  // rectangleSolidAngle
 
 namespace spectrace {
 namespace {
-
-double cornerTerm(double a, double b, double d) { return std::atan(a * b / (d * std::sqrt(a * a + b * b + d * d))); }
-
-// Solid angle of the rectangle [x1,x2] x [y1,y2] (z = 0) from (x0, y0, d).
-double rectangleSolidAngle(double x1, double x2, double y1, double y2, double x0, double y0, double d) {
-  return cornerTerm(x2 - x0, y2 - y0, d) - cornerTerm(x1 - x0, y2 - y0, d) - cornerTerm(x2 - x0, y1 - y0, d) +
-         cornerTerm(x1 - x0, y1 - y0, d);
-}
 
 void expectPointLightIrradiance(glm::dvec3 lightWorld, uint64_t beams, const char* name) {
   constexpr double kPower = 3.0;

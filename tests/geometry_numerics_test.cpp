@@ -35,6 +35,7 @@
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
 #include "support/test_scale.h"
+#include "reference/exact_solution.h"  // rectangleSolidAngle
 
 namespace spectrace {
 namespace {
@@ -48,15 +49,7 @@ constexpr double kSigmas = 5.0;
 constexpr double kMinExpected = 25.0;  // below this a pixel joins the pooled cell
 
 // ---------------------------------------------------------------------------
-// Exact geometry
-
-double cornerTerm(double a, double b, double d) { return std::atan(a * b / (d * std::sqrt(a * a + b * b + d * d))); }
-
-// Solid angle of the rectangle [x1,x2] x [y1,y2] (z = 0) seen from (x0, y0, d), d > 0.
-double rectangleSolidAngle(double x1, double x2, double y1, double y2, double x0, double y0, double d) {
-  return cornerTerm(x2 - x0, y2 - y0, d) - cornerTerm(x1 - x0, y2 - y0, d) - cornerTerm(x2 - x0, y1 - y0, d) +
-         cornerTerm(x1 - x0, y1 - y0, d);
-}
+// Exact geometry (rectangleSolidAngle: reference/exact_solution.h)
 
 // Share of a unit disk's area with s < v (v in [-1, 1]).
 double diskShareBelow(double v) {
@@ -74,7 +67,7 @@ double oneMinusCos(double a) {
 struct PixelRect {
   double x1, x2, y1, y2;
 };
-PixelRect pixelRect(const Camera& camera, int col, int row) {
+PixelRect bareSensorPixel(const Camera& camera, int col, int row) {
   const double pw = camera.sensorWidthM / camera.pixelsX;
   const double ph = camera.sensorHeightM / camera.pixelsY;
   const double x1 = -0.5 * camera.sensorWidthM + col * pw;
@@ -150,7 +143,7 @@ MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& c
   int cells = 0, failures = 0;
   for (int row = 0; row < camera.pixelsY; ++row) {
     for (int col = 0; col < camera.pixelsX; ++col) {
-      const double p = gain * probability(pixelRect(camera, col, row));
+      const double p = gain * probability(bareSensorPixel(camera, col, row));
       const uint64_t count = counts[size_t(row) * camera.pixelsX + col];
       stats.hits += count;
       totalP += p;
@@ -554,7 +547,7 @@ TEST(GeometryNumericsAngles, PinholeOfRadius1e7Metres) {
     uint64_t outside = 0;
     for (int row = 0; row < 16; ++row)
       for (int col = 0; col < 16; ++col) {
-        const PixelRect r = pixelRect(scene.camera, col, row);
+        const PixelRect r = bareSensorPixel(scene.camera, col, row);
         const double cx = 0.5 * (r.x1 + r.x2), cy = 0.5 * (r.y1 + r.y2);
         if (std::hypot(cx, cy) > imageRadius) outside += counts[size_t(row) * 16 + col];
       }

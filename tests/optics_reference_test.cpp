@@ -43,6 +43,7 @@
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
+#include "reference/exact_solution.h"  // rectangleSolidAngle
 
 namespace spectrace {
 
@@ -82,14 +83,6 @@ Quadrature gaussLegendre01(int n) {
     q.w.push_back(1.0 / ((1.0 - z * z) * dp * dp));  // 2 / ((1 - z^2) P'^2), halved for [0, 1]
   }
   return q;
-}
-
-// Solid angle of the rectangle [x1,x2] x [y1,y2] (z = 0) from (x0, y0, d),
-// as in analytic_render_test.cpp.
-double cornerTerm(double a, double b, double d) { return std::atan(a * b / (d * std::sqrt(a * a + b * b + d * d))); }
-double rectangleSolidAngle(double x1, double x2, double y1, double y2, double x0, double y0, double d) {
-  return cornerTerm(x2 - x0, y2 - y0, d) - cornerTerm(x1 - x0, y2 - y0, d) - cornerTerm(x2 - x0, y1 - y0, d) +
-         cornerTerm(x1 - x0, y1 - y0, d);
 }
 
 // Standard error of a pixel's irradiance k C for plain counts (every beam

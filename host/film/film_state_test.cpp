@@ -627,7 +627,9 @@ TEST(FilmState, BrokenCompressedStreamsAreRefusedNamingTheFile) {
   auto refusal = [&](const std::string& newBody) {
     std::ofstream(crafted, std::ios::binary | std::ios::trunc) << withBody(bytes, newBody);
     const std::string why = readRefusal(crafted);
-    if (!why.empty()) EXPECT_EQ(why.rfind(crafted.string() + ": ", 0), 0u) << "names the file: " << why;
+    if (!why.empty()) {
+      EXPECT_EQ(why.rfind(crafted.string() + ": ", 0), 0u) << "names the file: " << why;
+    }
     return why;
   };
   EXPECT_EQ(refusal(body), "") << "the re-signed stream itself reads";

@@ -114,7 +114,9 @@ TEST(WavelengthSampler, PathWavelengthsAreEachDrawnFromTheTableAtEqualCdfSteps) 
         const uint64_t rotated = u + uint64_t(j) * (uint64_t(1) << 62);
         const uint32_t at = f.kernel.intervalOfUniform(light, rotated);
         ASSERT_LE(iv[at].cdfLow, rotated);
-        if (at + 1 < iv.size()) ASSERT_LT(rotated, iv[at + 1].cdfLow);
+        if (at + 1 < iv.size()) {
+          ASSERT_LT(rotated, iv[at + 1].cdfLow);
+        }
         ASSERT_GE(path.lambda[j], iv[at].lambda0);
         ASSERT_LE(path.lambda[j], iv[at].lambda0 + iv[at].width);
       }
