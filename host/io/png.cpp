@@ -137,11 +137,7 @@ void writePngPreview(const std::filesystem::path& path, const RenderImage& image
   if (const float level = exposureLevel(image.rgb); level > 0.0f) {
     for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = toByte(image.rgb[i], level);
   }
-
-  io_detail::AtomicFile file(path, "PNG");
-  PngSink sink{file.fd(), 0, {}};
-  if (!encodePng(sink, bytes.data(), image.width, image.height)) file.fail(sink.error);
-  file.commit();
+  writePngRgb8(path, image.width, image.height, bytes);
 }
 
 void writePngRgb8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& bytes) {

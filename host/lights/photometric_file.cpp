@@ -73,7 +73,8 @@ std::vector<double> readAngles(NumberStream& in, size_t n, const std::string& wh
 }
 
 // The horizontal angles' symmetry unfolded: every C in [0, 360] the file's
-// angles give through their mirror images, with the column it copies.
+// angles give through their mirror images, with the column it copies (in
+// no order, repeats included: setColumns sorts them out).
 std::vector<std::pair<double, size_t>> unfoldSymmetry(const std::vector<double>& h, const std::string& name,
                                                       size_t line) {
   std::vector<std::pair<double, size_t>> images;
@@ -106,9 +107,6 @@ std::vector<std::pair<double, size_t>> unfoldSymmetry(const std::vector<double>&
                        first, last));
     }
   }
-  std::sort(images.begin(), images.end());
-  images.erase(std::unique(images.begin(), images.end(), [](auto& a, auto& b) { return a.first == b.first; }),
-               images.end());
   return images;
 }
 
@@ -122,14 +120,32 @@ size_t intervalOf(const std::vector<double>& v, double x, double& fraction) {
   return i;
 }
 
+// The table's C angles and candela columns from (C, column of `values`)
+// pairs: sorted by C, one column at each C (mirror images that land on
+// one C copy equal columns by symmetry).
+void setColumns(PhotometricTable& table, std::vector<std::pair<double, size_t>> images,
+                const std::vector<double>& values, size_t perColumn) {
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end(), [](auto& a, auto& b) { return a.first == b.first; }),
+               images.end());
+  for (const auto& [c, column] : images) {
+    table.cDegrees.push_back(c);
+    table.candela.insert(table.candela.end(), values.begin() + std::ptrdiff_t(column * perColumn),
+                         values.begin() + std::ptrdiff_t((column + 1) * perColumn));
+  }
+}
+
+double mod360(double c) {
+  const double m = std::fmod(c, 360.0);
+  return m < 0.0 ? m + 360.0 : m;
+}
+
 }  // namespace
 
 double PhotometricTable::intensity(double cDeg, double gammaDeg) const {
   if (!(gammaDeg >= gammaDegrees.front() && gammaDeg <= gammaDegrees.back())) return 0.0;
-  double c = std::fmod(cDeg, 360.0);
-  if (c < 0.0) c += 360.0;
   double s = 0.0, t = 0.0;
-  const size_t i = intervalOf(cDegrees, c, s);
+  const size_t i = intervalOf(cDegrees, mod360(cDeg), s);
   const size_t j = intervalOf(gammaDegrees, gammaDeg, t);
   return (1.0 - s) * ((1.0 - t) * at(i, j) + t * at(i, j + 1)) + s * ((1.0 - t) * at(i + 1, j) + t * at(i + 1, j + 1));
 }
@@ -230,7 +246,7 @@ PhotometricTable parseIes(std::string_view text, const std::string& name) {
                      vertical.front(), vertical.back()));
   const size_t horizontalLine = in.line();
   const std::vector<double> horizontal = readAngles(in, horizontalCount, "horizontal", name);
-  const auto images = unfoldSymmetry(horizontal, name, horizontalLine);
+  auto images = unfoldSymmetry(horizontal, name, horizontalLine);
 
   std::vector<double> values;
   const double factor = multiplier * ballast * ballastLamp;
@@ -251,11 +267,7 @@ PhotometricTable parseIes(std::string_view text, const std::string& name) {
                      horizontalCount, verticalCount));
 
   table.gammaDegrees = vertical;
-  for (const auto& [c, column] : images) {
-    table.cDegrees.push_back(c);
-    table.candela.insert(table.candela.end(), values.begin() + std::ptrdiff_t(column * verticalCount),
-                         values.begin() + std::ptrdiff_t((column + 1) * verticalCount));
-  }
+  setColumns(table, std::move(images), values, verticalCount);
   return table;
 }
 
@@ -318,11 +330,6 @@ class LdtLines {
   std::vector<std::string_view> lines_;
   size_t at_ = 0;
 };
-
-double mod360(double c) {
-  const double m = std::fmod(c, 360.0);
-  return m < 0.0 ? m + 360.0 : m;
-}
 
 }  // namespace
 
@@ -431,19 +438,12 @@ PhotometricTable parseEulumdat(std::string_view text, const std::string& name) {
       if (m == 0.0) images.emplace_back(360.0, col);  // the table closes the circle
     }
   }
-  std::sort(images.begin(), images.end());
-  images.erase(std::unique(images.begin(), images.end(), [](auto& a, auto& b) { return a.first == b.first; }),
-               images.end());
 
   PhotometricTable table;
   table.gammaDegrees = gammas;
   table.ratedLumens = flux[0];
   table.inputWatts = watts[0];
-  for (const auto& [c, column] : images) {
-    table.cDegrees.push_back(c);
-    table.candela.insert(table.candela.end(), values.begin() + std::ptrdiff_t(column * gammaCount),
-                         values.begin() + std::ptrdiff_t((column + 1) * gammaCount));
-  }
+  setColumns(table, std::move(images), values, gammaCount);
   if (table.cDegrees.front() != 0.0 || table.cDegrees.back() != 360.0)
     fail(name, gammaLine, "the C planes do not cover 0 to 360 degrees");
   return table;

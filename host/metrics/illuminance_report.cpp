@@ -12,23 +12,23 @@ namespace spectrace {
 PixelRegion wholeImage(const RenderImage& image) { return PixelRegion{0, 0, image.width, image.height}; }
 
 PixelRegion parsePixelRegion(const std::string& text, int width, int height, const std::string& option) {
+  auto notFourIntegers = [&](const std::string& got) {
+    return MeasureError(fmt::format("{} '{}': expected four integers x0,y0,x1,y1{}", option, text, got));
+  };
   std::vector<long long> values;
   const char* p = text.data();
   const char* end = p + text.size();
   while (true) {
     long long v = 0;
     const auto [next, ec] = std::from_chars(p, end, v);
-    if (ec != std::errc() || next == p)
-      throw MeasureError(fmt::format("{} '{}': expected four integers x0,y0,x1,y1", option, text));
+    if (ec != std::errc() || next == p) throw notFourIntegers("");
     values.push_back(v);
     p = next;
     if (p == end) break;
-    if (*p != ',' || values.size() == 4)
-      throw MeasureError(fmt::format("{} '{}': expected four integers x0,y0,x1,y1", option, text));
+    if (*p != ',' || values.size() == 4) throw notFourIntegers("");
     ++p;
   }
-  if (values.size() != 4)
-    throw MeasureError(fmt::format("{} '{}': expected four integers x0,y0,x1,y1, got {}", option, text, values.size()));
+  if (values.size() != 4) throw notFourIntegers(fmt::format(", got {}", values.size()));
   const long long x0 = values[0], y0 = values[1], x1 = values[2], y1 = values[3];
   if (!(0 <= x0 && x0 < x1 && x1 <= width) || !(0 <= y0 && y0 < y1 && y1 <= height))
     throw MeasureError(fmt::format("{} '{}': columns [x0, x1) and rows [y0, y1) must be non-empty and within the "

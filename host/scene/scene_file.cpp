@@ -135,9 +135,12 @@ Camera parseCamera(const jf::Source& c, const Json& v, const std::string& p) {
 
 // The light type names, and every key some light type accepts (to name a
 // typo such as "typ" before complaining that "type" is missing).
+// The keys every light takes, whatever its type.
+const Keys kCommonLightKeys = {"type", "name", "power_w", "power_lm", "spd"};
+
 struct LightKeys {
   Keys types;
-  Keys any = {"type", "name", "power_w", "power_lm", "spd"};
+  Keys any = kCommonLightKeys;
 };
 
 const LightKeys& lightKeys() {
@@ -206,7 +209,7 @@ Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, c
     c.fail(child(p, "type"), fmt::format("unknown light type {}{} (valid types: {})", jf::jsonQuoted(type),
                                          jf::suggestion(type, keys.types), jf::joinKeys(keys.types)));
   light.type = unit->type;
-  Keys allowed = {"type", "name", "power_w", "power_lm", "spd"};
+  Keys allowed = kCommonLightKeys;
   allowed.insert(allowed.end(), unit->keys.begin(), unit->keys.end());
   checkObject(c, v, p, allowed, fmt::format("a {} light", type));
   unit->parse(c, v, p, light);
