@@ -142,6 +142,7 @@ TEST(IlluminanceReport, JsonAndCsvCarryTheExrsValues) {
     EXPECT_EQ(x, region.x1);
   }
   EXPECT_EQ(row, region.y1);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(FalseColour, LegendTopIsTheNextRoundNumber) {
