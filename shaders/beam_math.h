@@ -40,6 +40,29 @@ FN vec2 cosSin2Pi(float u) {
   return result;
 }
 
+// atan2(y, x) in [-pi, pi], radians, of finite y and x (0 for 0, 0). The
+// ratio of the smaller to the larger magnitude, in [0, 1], is brought to
+// [-tan(pi/12), tan(pi/12)] by atan z = pi/6 + atan((z sqrt3 - 1) / (z + sqrt3));
+// there the Taylor series to w^13 truncates below 3e-10, far under float
+// rounding. Quadrants and the swap are exact.
+FN float polyAtan2(float y, float x) {
+  PRECISE float ax = abs(x);
+  PRECISE float ay = abs(y);
+  bool swapped = ay > ax;
+  PRECISE float small = swapped ? ax : ay;
+  PRECISE float large = swapped ? ay : ax;
+  PRECISE float z = large > 0.0f ? small / large : 0.0f;
+  bool shifted = z > 0.267949192f;  // tan(pi/12)
+  PRECISE float w = shifted ? (z * 1.73205081f - 1.0f) / (z + 1.73205081f) : z;
+  PRECISE float w2 = w * w;
+  PRECISE float a = w * (1.0f + w2 * (-0.333333333f + w2 * (0.2f + w2 * (-0.142857143f + w2 * (0.111111111f +
+                    w2 * (-0.0909090909f + w2 * 0.0769230769f))))));
+  if (shifted) a = a + 0.523598776f;  // pi/6
+  if (swapped) a = 1.57079633f - a;   // pi/2
+  if (x < 0.0f) a = 3.14159265f - a;  // pi
+  return y < 0.0f ? -a : a;
+}
+
 // Position in [0, 1] within an interval whose density falls linearly from
 // (1 - slope) to (1 + slope). Inverts the quadratic CDF in the form
 // t = 2u / (a + sqrt((1-u) a^2 + u b^2)), which has no cancellation; all

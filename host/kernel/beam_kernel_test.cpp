@@ -226,6 +226,26 @@ TEST(SharedMath, CosSin2PiMatchesLibmToAFewUlps) {
   EXPECT_LT(worst, 4e-7);
 }
 
+TEST(SharedMath, PolyAtan2MatchesLibmToAFewUlps) {
+  SamplerFixture f(makeLineSpd(500.0));
+  double worst = 0.0;
+  // Every direction around the circle, at radii from 1e-20 to 1e20, plus the
+  // axes and the diagonals exactly.
+  for (int k = 0; k < 200000; ++k) {
+    const double angle = 2.0 * M_PI * (k / 200000.0) - M_PI;
+    const double radius = std::pow(10.0, -20.0 + 40.0 * ((k * 7919) % 200000) / 200000.0);
+    const float y = float(radius * std::sin(angle)), x = float(radius * std::cos(angle));
+    worst = std::max(worst, std::abs(double(f.kernel.polyAtan2(y, x)) - std::atan2(double(y), double(x))));
+  }
+  for (float y : {-1.0f, 0.0f, 1.0f})
+    for (float x : {-1.0f, 0.0f, 1.0f})
+      worst = std::max(worst, std::abs(double(f.kernel.polyAtan2(y, x)) - std::atan2(double(y), double(x))));
+  // Float rounding of the reduction and the Horner polynomial, added to pi
+  // at most: a few ulps of pi (2.4e-7 each).
+  EXPECT_LT(worst, 8e-7);
+  EXPECT_EQ(f.kernel.polyAtan2(0.0f, 0.0f), 0.0f);
+}
+
 TEST(SharedMath, LinearIntervalSamplerInvertsItsCdfAndStaysInside) {
   SamplerFixture f(makeLineSpd(500.0));
   for (float slope : {-1.0f, -0.999f, -0.3f, 0.0f, 0.5f, 1.0f}) {
