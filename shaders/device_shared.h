@@ -87,7 +87,8 @@ SPECTRACE_CONSTANT uint kLightSpot = 1;
 SPECTRACE_CONSTANT uint kLightDisk = 2;
 SPECTRACE_CONSTANT uint kLightRect = 3;
 SPECTRACE_CONSTANT uint kLightLaser = 4;
-SPECTRACE_CONSTANT uint kLightTypeCount = 5;
+SPECTRACE_CONSTANT uint kLightPhotometric = 5;
+SPECTRACE_CONSTANT uint kLightTypeCount = 6;
 SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit per type
 
 // Camera models (what stands before the sensor): one kernel unit per model
@@ -174,6 +175,10 @@ SPECTRACE_CONSTANT uint kRngBlockLight = 2;      // light (64 bit), (spare), (sp
 // camera connection, kRngBlockBounce + 2b + 1 (aperture u, aperture v,
 // rounding, spare): keyed on (seed, beam, bounce), as every block is.
 SPECTRACE_CONSTANT uint kRngBlockBounce = 3;
+// A photometric light's direction (lights/photometric.h) is drawn by
+// rejection inside its patch: try t draws block kRngBlockPhotometricTry + t
+// (C u, gamma u, acceptance word, spare), far above any bounce's blocks.
+SPECTRACE_CONSTANT uint kRngBlockPhotometricTry = 0x40000000u;
 // Camera paths (camera_path.h), keyed on (seed, path index, block) like
 // beams, in blocks far above any bounce's: the start (pixel u, v, aperture
 // u, v), the wavelength (interval (64 bit), position, rounding), the light
@@ -249,6 +254,17 @@ SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
 // bits, readSceneFloat), so a new table needs no binding of its own. Built by
 // SceneData::append (host/device_data/scene_data.h). The
 // materials' reflectance tables are its first tables.
+
+// A photometric light's scene data (host/lights/photometric_light.cpp,
+// shaders/lights/photometric.h), from LightRecord.dataFirst: the C count nC,
+// the gamma count nG, the patch alias table's bits, the most rejection tries;
+// then nC C angles and nG gamma angles in turns (ascending; C from 0 to 1),
+// nC x nG intensities (candela over the table's lumens: sr^-1, C major),
+// (nC - 1) x (nG - 1) patch envelopes (at least the patch's largest
+// intensity x sin(gamma)), and the patch alias columns, four words each
+// (threshold low, high, alias, 0). Patch k is C interval k / (nG - 1) and
+// gamma interval k % (nG - 1).
+SPECTRACE_CONSTANT uint kPhotometricHeaderWords = 4u;
 
 // Material kinds (spectrace::MaterialType, at the end of this file, takes
 // its values from these). One kernel unit per kind in
@@ -584,8 +600,9 @@ enum class LightType : uint32_t {
   Disk = device::kLightDisk,
   Rect = device::kLightRect,
   Laser = device::kLightLaser,
+  Photometric = device::kLightPhotometric,
 };
-static_assert(uint32_t(LightType::Laser) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
+static_assert(uint32_t(LightType::Photometric) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
 // The material kinds on the host, numbered as the kernel numbers them.
 enum class MaterialType : uint32_t {
   Absorber = device::kMaterialAbsorber,

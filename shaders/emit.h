@@ -10,6 +10,7 @@
 #include "lights/disk.h"
 #include "lights/rect.h"
 #include "lights/laser.h"
+#include "lights/photometric.h"
 
 // The entry an alias table of 2^bits columns from column `first` draws for
 // the 64-bit uniform u (host/spectrum/alias_table.h): O(1), one or two
@@ -40,12 +41,16 @@ FN float drawWavelength(LightRecord light, uint64_t intervalUniform, float posit
   return wavelengthInInterval(interval.lambda0, interval.width, interval.slope, positionUniform);
 }
 
-// Origin and direction of a beam from `light` from four uniforms, through
-// the light type's unit, aimed where the host set it up; returns the weight
-// ratio (emission density / sampling density, over the light's largest
-// such value; 0: the beam carries nothing).
-FN float emitLightBeam(LightRecord light, float ou, float ov, float du, float dv, OUT(vec3) origin,
-                       OUT(vec3) direction) {
+// Origin and direction of beam `beamIndex` from `light` from the four words
+// of its geometry block (kRngBlockGeometry), through the light type's unit,
+// aimed where the host set it up; returns the weight ratio (emission
+// density / sampling density, over the light's largest such value; 0: the
+// beam carries nothing).
+FN float emitLightBeam(LightRecord light, uvec4 geometry, uint64_t beamIndex, OUT(vec3) origin, OUT(vec3) direction) {
+  float ou = uniformFromWord(geometry.x);
+  float ov = uniformFromWord(geometry.y);
+  float du = uniformFromWord(geometry.z);
+  float dv = uniformFromWord(geometry.w);
   bool aimed = SPECTRACE_AIM && light.aimed != 0u;
   float ratio = 1.0f;
   origin = light.position;
@@ -60,6 +65,8 @@ FN float emitLightBeam(LightRecord light, float ou, float ov, float du, float dv
     ratio = emitRectBeam(light, aimed, ou, ov, du, dv, origin, direction);
   } else if (SPECTRACE_LIGHT_ENABLED(kLightLaser) && light.type == kLightLaser) {
     ratio = emitLaserBeam(light, aimed, ou, ov, origin, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightPhotometric) && light.type == kLightPhotometric) {
+    ratio = emitPhotometricBeam(light, geometry, beamIndex, direction);
   }
   return ratio;
 }

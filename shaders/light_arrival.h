@@ -31,6 +31,8 @@ FN float lightArrival(LightRecord light, vec3 point, float u, float v, OUT(vec3)
     arrival = diskLightArrival(light, point, u, v, lightPoint);
   } else if (SPECTRACE_LIGHT_ENABLED(kLightRect) && light.type == kLightRect) {
     arrival = rectLightArrival(light, point, u, v, lightPoint);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightPhotometric) && light.type == kLightPhotometric) {
+    arrival = photometricLightArrival(light, point, lightPoint);
   }
   return arrival;
 }

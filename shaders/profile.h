@@ -27,8 +27,7 @@ FN bool profileFirstHit(uint64_t beamIndex) {
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
   vec3 origin;
   vec3 direction;
-  float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
-                              uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
+  float ratio = emitLightBeam(light, geometry, beamIndex, origin, direction);
   uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
   PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
                                           constants.wavelengthsPerPath);
@@ -66,8 +65,7 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   vec3 origin;
   vec3 direction;
   light.aimed = 0u;  // aiming belongs to the last stage
-  float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
-                              uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
+  float ratio = emitLightBeam(light, geometry, beamIndex, origin, direction);
   hash = profileMix(hash, floatBitsToUint(origin.x) ^ floatBitsToUint(origin.y) ^ floatBitsToUint(origin.z));
   hash = profileMix(hash, floatBitsToUint(direction.x) ^ floatBitsToUint(direction.y) ^ floatBitsToUint(direction.z));
   hash = profileMix(hash, floatBitsToUint(ratio));

@@ -42,8 +42,7 @@ FN void traceLightPath(uint64_t beamIndex, INOUT(BeamTally) tally) {
   uvec4 geometry = philox4x32(constants.seed, beamIndex, kRngBlockGeometry);
   vec3 origin;
   vec3 direction;
-  float ratio = emitLightBeam(light, uniformFromWord(geometry.x), uniformFromWord(geometry.y),
-                              uniformFromWord(geometry.z), uniformFromWord(geometry.w), origin, direction);
+  float ratio = emitLightBeam(light, geometry, beamIndex, origin, direction);
   if (SPECTRACE_OBJECTS) {
     uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
     PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),

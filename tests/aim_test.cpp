@@ -55,6 +55,7 @@ Light lightOfType(LightType type) {
       laser.radiusM = 0.02;
       return laser;
     }
+    case LightType::Photometric: break;  // never aimed (lights/photometric_light.cpp)
   }
   return {};
 }

@@ -4,12 +4,14 @@
 // (lights/light_type.h).
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "device_shared.h"
+#include "lights/photometric_file.h"
 #include "spectrum/spd.h"
 
 namespace spectrace {
@@ -41,6 +43,11 @@ struct Light {
   std::filesystem::path spdFile;  // the CSV file the spd was read from (an input: never an output); else empty
   Spd spd;                        // resolved spectrum (relative units)
   std::string name;               // optional "name" from the file; empty when absent
+  // photometric: the luminaire's table (read from photometryFile, an
+  // input), and the world direction of its C = 0 half-plane, perpendicular
+  // to `direction` (nadir); uAxis holds the same.
+  std::shared_ptr<const PhotometricTable> photometry;
+  std::filesystem::path photometryFile;
 };
 
 }  // namespace spectrace

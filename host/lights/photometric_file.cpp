@@ -4,12 +4,12 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <numbers>
-#include <sstream>
 
 #include <fmt/format.h>
+
+#include "json/input_file.h"
 
 namespace spectrace {
 namespace {
@@ -150,23 +150,24 @@ double PhotometricTable::intensity(double cDeg, double gammaDeg) const {
   return (1.0 - s) * ((1.0 - t) * at(i, j) + t * at(i, j + 1)) + s * ((1.0 - t) * at(i + 1, j) + t * at(i + 1, j + 1));
 }
 
-double PhotometricTable::tableLumens() const {
+double PhotometricTable::patchLumens(size_t c, size_t g) const {
   // Over a patch, I is linear in C at each gamma, so its C integral is the
   // width times the mean of the two edges; along gamma, with t = (gamma -
   // g0) / dg, the integrals of (1 - t) sin(gamma) and t sin(gamma) are
   // A - B / dg and B / dg, A = cos g0 - cos g1, B = sin g1 - sin g0 - dg cos g1.
   constexpr double kRad = std::numbers::pi / 180.0;
+  const double g0 = gammaDegrees[g] * kRad, g1 = gammaDegrees[g + 1] * kRad, dg = g1 - g0;
+  const double a = std::cos(g0) - std::cos(g1);
+  const double b = std::sin(g1) - std::sin(g0) - dg * std::cos(g1);
+  const double lower = a - b / dg, upper = b / dg;  // weights of the patch's gamma-edges g0 and g1
+  const double dc = (cDegrees[c + 1] - cDegrees[c]) * kRad;
+  return 0.5 * dc * (lower * (at(c, g) + at(c + 1, g)) + upper * (at(c, g + 1) + at(c + 1, g + 1)));
+}
+
+double PhotometricTable::tableLumens() const {
   double flux = 0.0;
-  for (size_t j = 0; j + 1 < gammaDegrees.size(); ++j) {
-    const double g0 = gammaDegrees[j] * kRad, g1 = gammaDegrees[j + 1] * kRad, dg = g1 - g0;
-    const double a = std::cos(g0) - std::cos(g1);
-    const double b = std::sin(g1) - std::sin(g0) - dg * std::cos(g1);
-    const double lower = a - b / dg, upper = b / dg;  // weights of the patch's gamma-edges g0 and g1
-    for (size_t i = 0; i + 1 < cDegrees.size(); ++i) {
-      const double dc = (cDegrees[i + 1] - cDegrees[i]) * kRad;
-      flux += 0.5 * dc * (lower * (at(i, j) + at(i + 1, j)) + upper * (at(i, j + 1) + at(i + 1, j + 1)));
-    }
-  }
+  for (size_t c = 0; c + 1 < cDegrees.size(); ++c)
+    for (size_t g = 0; g + 1 < gammaDegrees.size(); ++g) flux += patchLumens(c, g);
   return flux;
 }
 
@@ -273,12 +274,14 @@ PhotometricTable parseIes(std::string_view text, const std::string& name) {
 
 namespace {
 
+// Through readInputFile: bounded, regular files only, and from a render
+// state's bundle when a scene is developed from one.
 std::string readText(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw PhotometricFileError(fmt::format("{}: cannot be read", path.string()));
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
+  try {
+    return readInputFile(path, "photometric file");
+  } catch (const InputFileError& e) {
+    throw PhotometricFileError(e.what());
+  }
 }
 
 // EULUMDAT's lines, one field each, numbered from 1.

@@ -40,8 +40,10 @@ struct PhotometricTable {
   // Bilinear in C and gamma (degrees); C taken modulo 360, 0 outside the
   // gamma range.
   double intensity(double cDeg, double gammaDeg) const;
-  // The flux of the bilinear table in lumens: the integral of I sin(gamma)
-  // over each patch in closed form.
+  // The flux of the bilinear table in lumens over the patch between C
+  // entries c, c + 1 and gamma entries g, g + 1: the integral of I sin(gamma)
+  // in closed form. tableLumens sums every patch.
+  double patchLumens(size_t c, size_t g) const;
   double tableLumens() const;
 };
 

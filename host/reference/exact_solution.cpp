@@ -538,6 +538,30 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
           }
           break;
         }
+        case LightType::Photometric: {
+          // E = (I / Φ_table) · power · cos θ / r², I the file's bilinear
+          // intensity at the direction's C and gamma, taken in world
+          // coordinates (C = 90 is cross(C0, nadir)); a composite rule for
+          // the table's kinks.
+          kinds.push_back("photometric light over a bare sensor");
+          const PhotometricTable& table = *light.photometry;
+          const double perIntensity = power / table.tableLumens();
+          const glm::dvec3 nadir = glm::normalize(light.direction), c0 = glm::normalize(light.uAxis);
+          const glm::dvec3 c0Local = frame.directionToLocal(c0);
+          const glm::dvec3 c90Local = frame.directionToLocal(glm::cross(c0, nadir));
+          const auto f = [&](double x, double y) {
+            const glm::dvec3 away = glm::dvec3(x, y, 0.0) - pos;
+            const double r = glm::length(away);
+            const glm::dvec3 d = away / r;
+            const double gamma = std::acos(std::clamp(glm::dot(d, axis), -1.0, 1.0)) * 180.0 / kPi;
+            double c = std::atan2(glm::dot(d, c90Local), glm::dot(d, c0Local)) * 180.0 / kPi;
+            if (c < 0.0) c += 360.0;
+            return perIntensity * table.intensity(c, gamma) * (pos.z / r) / (r * r);
+          };
+          for (size_t p = 0; p < pixels; ++p)
+            e[p] = compositeRectMean(f, rects[p].x1, rects[p].x2, rects[p].y1, rects[p].y2, 4, n);
+          break;
+        }
         default: return std::nullopt;
       }
     } else {

@@ -170,14 +170,16 @@ void parseLightPower(const jf::Source& c, const Json& v, const std::string& p, c
   const Json* watts = given("power_w");
   const Json* lumens = given("power_lm");
   if (watts && lumens) c.fail(child(p, "power_lm"), "a light's power is power_w (watts) or power_lm (lumens), not both");
-  if (!lumens)
+  // A luminaire file gives its flux in lumens when the scene gives neither.
+  const bool fileLumens = !watts && !lumens && light.photometry;
+  if (!lumens && !fileLumens)
     light.powerW = jf::getNonNegative(
         c, require(c, v, p, "power_w", " (radiant flux in watts; or power_lm, luminous flux in lumens)"),
         child(p, "power_w"));
   const std::optional<double> blackbodyK = parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
-  if (!lumens) return;
-  const std::string lp = child(p, "power_lm");
-  light.powerLm = jf::getNonNegative(c, *lumens, lp);
+  if (!lumens && !fileLumens) return;
+  const std::string lp = child(p, lumens ? "power_lm" : "file");
+  light.powerLm = lumens ? jf::getNonNegative(c, *lumens, lp) : light.photometry->tableLumens();
   light.powerW = 0.0;
   if (light.powerLm == 0.0) return;
   const double fraction = luminousFraction(light.spd, blackbodyK);
@@ -303,7 +305,10 @@ Scene parseScene(const std::string& jsonText, const fs::path& file) {
 
 std::vector<fs::path> referencedFiles(const Scene& scene) {
   std::vector<fs::path> files;
-  for (const Light& light : scene.lights) files.push_back(light.spdFile);
+  for (const Light& light : scene.lights) {
+    files.push_back(light.spdFile);
+    files.push_back(light.photometryFile);
+  }
   for (const SceneObject& object : scene.objects) {
     files.push_back(object.shape.meshFile);
     files.push_back(object.material.reflectanceFile);

@@ -211,7 +211,10 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
     if (!ownState) all.push_back(input);  // resuming replaces its own state
   }
   all.push_back(job.scene.sourcePath);
-  for (const Light& light : job.scene.lights) all.push_back(light.spdFile);  // the scene's CSV spectra
+  for (const Light& light : job.scene.lights) {  // the scene's CSV spectra and luminaire files
+    all.push_back(light.spdFile);
+    all.push_back(light.photometryFile);
+  }
   for (const SceneObject& object : job.scene.objects) {  // its OBJ meshes and reflectance CSVs
     all.push_back(object.shape.meshFile);
     all.push_back(object.material.reflectanceFile);
