@@ -304,12 +304,17 @@ class LdtLines {
       fail(name_, lines_.size(), fmt::format("the file ends where {} should be: truncated", what));
     return lines_[at_++];
   }
+  // A decimal comma ("0,85"), as files written in comma locales have it, is
+  // read as a point: with one field a line it cannot separate fields.
   double number(const std::string& what) {
     const size_t line = this->line();
     const std::string_view t = text(what);
+    std::string point(t);
+    if (std::count(point.begin(), point.end(), ',') == 1 && point.find('.') == std::string::npos)
+      point[point.find(',')] = '.';
     double v = 0.0;
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
+    const auto [end, ec] = std::from_chars(point.data(), point.data() + point.size(), v);
+    if (t.empty() || ec != std::errc() || end != point.data() + point.size() || !std::isfinite(v))
       fail(name_, line, fmt::format("'{}' is not a number ({})", t, what));
     return v;
   }

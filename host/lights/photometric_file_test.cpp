@@ -183,6 +183,22 @@ std::string ldtFile(int symmetry, const std::vector<double>& c, const std::vecto
   return t;
 }
 
+TEST(EulumdatFile, ReadsDecimalCommas) {
+  // As a comma locale writes the file: the factor 1,5 and the intensities.
+  std::string text = ldtFile(1, {0, 90, 180, 270}, {0, 45, 90}, {300.5, 200.25, 0}, "2000", "1,5");
+  for (const char* from : {"300.5\n", "200.25\n"}) {
+    std::string to = from;
+    to[to.find('.')] = ',';
+    text.replace(text.find(from), std::string(from).size(), to);
+  }
+  const PhotometricTable t = parseEulumdat(text, "comma.ldt");
+  EXPECT_DOUBLE_EQ(t.at(0, 0), 300.5 * 1.5 * 2.0);  // cd/klm x factor x 2000 lm / 1000
+  EXPECT_DOUBLE_EQ(t.at(0, 1), 200.25 * 1.5 * 2.0);
+  // Two commas are not a number.
+  EXPECT_THROW(parseEulumdat(ldtFile(1, {0, 90, 180, 270}, {0, 45, 90}, {300, 200, 0}, "2000", "1,5,1"), "x.ldt"),
+               PhotometricFileError);
+}
+
 TEST(EulumdatFile, RotationalSymmetryAndUnits) {
   const PhotometricTable t = parseEulumdat(ldtFile(1, {0, 90, 180, 270}, {0, 45, 90}, {300, 200, 0}), "lamp.ldt");
   EXPECT_EQ(t.cDegrees, (std::vector<double>{0, 360}));
