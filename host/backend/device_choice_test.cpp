@@ -21,9 +21,12 @@ TEST(DeviceChoice, AutoIsAHardwareGpuElseTheCpuReference) {
   EXPECT_EQ(chosen->capabilities().hardwareGpu, hardware) << chosen->capabilities().name;
   EXPECT_EQ(chosen->capabilities().reference, !hardware) << chosen->capabilities().name;
   const std::string described = describeDevices();
-  if (!hardware)
+  if (!hardware) {
     EXPECT_NE(described.find("--device auto uses the CPU reference"), std::string::npos) << described;
-  if (vulkan) EXPECT_EQ(Device::open(DeviceChoice::Gpu)->kind(), DeviceKind::Vulkan);
+  }
+  if (vulkan) {
+    EXPECT_EQ(Device::open(DeviceChoice::Gpu)->kind(), DeviceKind::Vulkan);
+  }
 }
 
 }  // namespace
