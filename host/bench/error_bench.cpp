@@ -122,9 +122,10 @@ std::vector<ColourBinRow> runColourBinStudy(const DeviceSpec& device, uint64_t b
       const auto exactXyz = spdToXyz(inRange, observer);
       const auto exactXy = chromaticity(exactXyz);
       ResolveParameters parameters = resolveParametersFor(scene, plan, beams);
-      auto meanXyz = [&](bool exactColour) {
+      // The film by reference: clang 14 cannot capture a structured binding.
+      auto meanXyz = [&, &film = histogram](bool exactColour) {
         parameters.useExactColour = exactColour;
-        const RenderImage resolved = resolveOnCpu(histogram, parameters);
+        const RenderImage resolved = resolveOnCpu(film, parameters);
         std::array<double, 3> sum{0, 0, 0};
         for (size_t i = 0; i < resolved.xyz.size(); ++i) sum[i % 3] += resolved.xyz[i];
         return sum;
