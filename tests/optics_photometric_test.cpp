@@ -30,6 +30,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "support/object_scenes.h"
+#include "support/device_renders.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -90,34 +91,11 @@ std::string ldtText(const std::vector<double>& gamma, double lumens, double (*in
 }
 
 Light photometricLight(const PhotometricTable& table, glm::dvec3 position, glm::dvec3 nadir, glm::dvec3 c0) {
-  Light light = testing::surfaceLight(LightType::Photometric, position, glm::normalize(nadir), 2.0, *cieIlluminant("D65"));
+  Light light =
+      testing::surfaceLight(LightType::Photometric, position, glm::normalize(nadir), 2.0, *cieIlluminant("D65"));
   light.photometry = std::make_shared<const PhotometricTable>(table);
   light.uAxis = glm::normalize(c0 - light.direction * glm::dot(c0, light.direction));
   return light;
-}
-
-RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t beams, uint64_t seed,
-                      const CompileOptions& plan = {}) {
-  RenderOptions options;
-  options.beams = beams;
-  options.seed = seed;
-  options.device = device;
-  options.plan = plan;
-  options.loop.checkpointSeconds = 0.0;
-  RenderResult result = render(scene, options);
-  std::printf("  %s: %llu beams in %.2f s, %llu counted\n", result.deviceName.c_str(), (unsigned long long)beams,
-              result.traceWallSeconds, (unsigned long long)result.summary.countedBeams);
-  return result;
-}
-
-// Both devices with the same beams: the same film. Returns the CPU's.
-RenderResult renderOnBothDevices(const Scene& scene, uint64_t beams, uint64_t seed, const CompileOptions& plan = {}) {
-  const RenderResult gpu = renderOn(DeviceChoice::Gpu, scene, beams, seed, plan);
-  EXPECT_EQ(gpu.deviceKind, DeviceKind::Vulkan);
-  const RenderResult cpu = renderOn(DeviceChoice::Cpu, scene, beams, seed, plan);
-  EXPECT_GT(cpu.summary.countedBeams, 0u);
-  EXPECT_TRUE(gpu.histogram.counts() == cpu.histogram.counts()) << "lavapipe and the CPU reference binned differently";
-  return cpu;
 }
 
 // The render's pixels against the exact image: z = (E - e) / sqrt(v e)
@@ -165,13 +143,13 @@ const uint64_t kBeams = testing::scaledBeams(4'000'000, 200'000);
 TEST(OpticsPhotometric, LambertianTableGivesItsIlluminanceOnBothDevices) {
   const PhotometricTable table = parseIes(iesText({0.0}, steps(0, 90, 10), lambertian), "lambertian.ies");
   const Scene scene = sensorUnder(photometricLight(table, {0.0, 0.0, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, renderOnBothDevices(scene, kBeams, 1), kBeams, "Lambertian");
+  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 1), kBeams, "Lambertian");
 }
 
 TEST(OpticsPhotometric, BatwingTableGivesItsIlluminanceOnBothDevices) {
   const PhotometricTable table = parseIes(iesText({0.0}, steps(0, 90, 5), batwing), "batwing.ies");
   const Scene scene = sensorUnder(photometricLight(table, {0.02, -0.01, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, renderOnBothDevices(scene, kBeams, 2), kBeams, "batwing");
+  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 2), kBeams, "batwing");
 }
 
 TEST(OpticsPhotometric, AsymmetricTableFollowsItsC0AxisOnBothDevices) {
@@ -180,7 +158,7 @@ TEST(OpticsPhotometric, AsymmetricTableFollowsItsC0AxisOnBothDevices) {
   // Tilted, with C = 0 neither along a world axis nor the default.
   const Scene scene =
       sensorUnder(photometricLight(table, {-0.03, 0.02, 0.25}, {0.15, -0.1, -1.0}, {0.3, 1.0, 0.0}));
-  expectMatchesExact(scene, renderOnBothDevices(scene, kBeams, 3), kBeams, "asymmetric 0-360");
+  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 3), kBeams, "asymmetric 0-360");
 }
 
 TEST(OpticsPhotometric, EulumdatFileGivesTheSameIlluminance) {
@@ -189,7 +167,7 @@ TEST(OpticsPhotometric, EulumdatFileGivesTheSameIlluminance) {
   const PhotometricTable ies = parseIes(iesText({0.0}, gamma, batwing), "batwing.ies");
   EXPECT_NEAR(ldt.tableLumens(), ies.tableLumens(), 1e-6 * ies.tableLumens());
   const Scene scene = sensorUnder(photometricLight(ldt, {0.0, 0.0, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, renderOnBothDevices(scene, kBeams, 4), kBeams, "batwing (EULUMDAT)");
+  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 4), kBeams, "batwing (EULUMDAT)");
 }
 
 // The scene file's form: the file beside the scene, nadir straight down by
@@ -197,13 +175,22 @@ TEST(OpticsPhotometric, EulumdatFileGivesTheSameIlluminance) {
 // own (in lumens) unless power_lm or power_w is given; refusals name the
 // light's field.
 TEST(OpticsPhotometric, SceneFileReadsTheLuminaireAndItsFlux) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("spectrace_photometric_{}", ::getpid());
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("spectrace_photometric_{}", ::getpid());
   std::filesystem::create_directories(dir);
+  struct RemovedAtExit {
+    std::filesystem::path dir;
+    ~RemovedAtExit() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  } removed{dir};
   {
     std::ofstream(dir / "down.ies") << iesText({0.0}, steps(0, 90, 10), lambertian);
   }
   const auto sceneWith = [&](const std::string& extra, const std::string& file = "down.ies") {
-    return parseScene(R"({"camera": {"position": [0, 0, 0], "look_at": [0, 1, 0], "up": [0, 0, 1], "sensor": {"width_m": 0.1, "height_m": 0.1, "pixels": [4, 4]}},
+    return parseScene(R"({"camera": {"position": [0, 0, 0], "look_at": [0, 1, 0], "up": [0, 0, 1],
+                                      "sensor": {"width_m": 0.1, "height_m": 0.1, "pixels": [4, 4]}},
                           "lights": [{"type": "photometric", "position": [0, 1, 0.5], "spd": "D65", "file": ")" +
                           file + "\"" + extra + "}]}",
                       dir / "scene.json");
@@ -233,7 +220,6 @@ TEST(OpticsPhotometric, SceneFileReadsTheLuminaireAndItsFlux) {
   const std::string missing = refusal("", "none.ies");
   EXPECT_NE(missing.find("/lights/0/file"), std::string::npos) << missing;
   EXPECT_NE(missing.find("none.ies"), std::string::npos) << missing;
-  std::filesystem::remove_all(dir);
 }
 
 // A diffuse plate under an asymmetric downlight, seen through a pinhole:
@@ -257,12 +243,12 @@ TEST(OpticsPhotometric, CameraPathsAgreeWithLightPathsOnADiffusePlate) {
   CompileOptions cameraOnly;
   cameraOnly.lightPaths = false;
   const uint64_t small = testing::scaledBeams(100'000, 20'000);
-  renderOnBothDevices(scene, small, 5, lightOnly);
-  renderOnBothDevices(scene, small, 6, cameraOnly);
+  testing::renderOnBothDevices(scene, small, 5, lightOnly);
+  testing::renderOnBothDevices(scene, small, 6, cameraOnly);
   const uint64_t lightBeams = testing::scaledBeams(2'000'000, 400'000);
-  const RenderResult light = renderOn(DeviceChoice::Cpu, scene, lightBeams, 7, lightOnly);
+  const RenderResult light = testing::renderOn(DeviceChoice::Cpu, scene, lightBeams, 7, lightOnly);
   const uint64_t paths = testing::scaledBeams(400'000, 100'000);
-  const RenderResult camera = renderOn(DeviceChoice::Cpu, scene, paths, 8, cameraOnly);
+  const RenderResult camera = testing::renderOn(DeviceChoice::Cpu, scene, paths, 8, cameraOnly);
   const auto result = testing::compareRenders(testing::pixelEstimates(light.histogram, light.plan, lightBeams),
                                               testing::pixelEstimates(camera.histogram, camera.plan, paths),
                                               "light paths vs camera paths");

@@ -25,6 +25,7 @@
 #include "reference/exact_solution.h"
 #include "render/renderer.h"
 #include "support/object_scenes.h"
+#include "support/device_renders.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -35,34 +36,6 @@ namespace {
 using testing::toWorld;
 
 constexpr double kPi = 3.14159265358979323846;
-
-RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t beams, uint64_t seed,
-                      const CompileOptions& plan = {}, bool generalPipeline = false) {
-  RenderOptions options;
-  if (generalPipeline) options.tracer.specialisedFeatures = kSpecialiseNone;
-  options.beams = beams;
-  options.seed = seed;
-  options.device = device;
-  options.plan = plan;
-  options.loop.checkpointSeconds = 0.0;
-  RenderResult result = render(scene, options);
-  EXPECT_EQ(result.deviceKind, device == DeviceChoice::Gpu ? DeviceKind::Vulkan : DeviceKind::Cpu);
-  std::printf("  %s: %llu beams in %.2f s, %llu counted\n", result.deviceName.c_str(), (unsigned long long)beams,
-              result.traceWallSeconds, (unsigned long long)result.summary.countedBeams);
-  return result;
-}
-
-// The scene on lavapipe and on the CPU reference with the same beams: the
-// films must be equal bit for bit. Returns the CPU's render.
-RenderResult renderOnBothDevices(const Scene& scene, uint64_t beams, uint64_t seed, const CompileOptions& plan = {}) {
-  const RenderResult gpu = renderOn(DeviceChoice::Gpu, scene, beams, seed, plan);
-  RenderResult cpu = renderOn(DeviceChoice::Cpu, scene, beams, seed, plan);
-  EXPECT_GT(cpu.summary.countedBeams, 0u);
-  EXPECT_TRUE(gpu.histogram.counts() == cpu.histogram.counts()) << "lavapipe and the CPU reference binned differently";
-  EXPECT_TRUE(gpu.histogram.colourSums() == cpu.histogram.colourSums()) << "colour sums differ";
-  EXPECT_TRUE(gpu.histogram.squaredWeightSums() == cpu.histogram.squaredWeightSums()) << "squared weights differ";
-  return cpu;
-}
 
 CompileOptions estimators(bool lightPaths, bool cameraPaths, bool connect = true) {
   CompileOptions o;
@@ -139,7 +112,7 @@ TEST(OpticsThinLens, PointsInFocusLandInTheirImagePixelWithTheFluxTheLensSubtend
   const FocusScene f = focusScene();
   const Camera& camera = f.scene.camera;
   const uint64_t beams = testing::scaledBeams(2'000'000, 200'000);
-  const RenderResult r = renderOnBothDevices(f.scene, beams, 3, estimators(true, false));
+  const RenderResult r = testing::renderOnBothDevices(f.scene, beams, 3, estimators(true, false));
   const testing::PixelEstimates e = testing::pixelEstimates(r.histogram, r.plan, beams);
   const double s = f.lens.lensDistanceM();
   const double pixelArea = (camera.sensorWidthM / camera.pixelsX) * (camera.sensorHeightM / camera.pixelsY);
@@ -195,7 +168,7 @@ TEST(OpticsThinLens, OutOfFocusPointFillsItsBlurDiskAsTheClosedFormSays) {
   ASSERT_NEAR(blur, 1.974e-3, 1e-6);
 
   const uint64_t beams = testing::scaledBeams(3'000'000, 300'000);
-  const RenderResult r = renderOnBothDevices(scene, beams, 5, estimators(true, false));
+  const RenderResult r = testing::renderOnBothDevices(scene, beams, 5, estimators(true, false));
   const testing::PixelEstimates e = testing::pixelEstimates(r.histogram, r.plan, beams);
   const Camera& camera = scene.camera;
   const double pw = camera.sensorWidthM / camera.pixelsX;
@@ -271,12 +244,12 @@ TEST(OpticsThinLens, PlateThroughTheLensAgreesAcrossEstimators) {
   const Scene scene = plateScene();
   // Each estimator's film is equal on both devices at a smaller count.
   const uint64_t small = testing::scaledBeams(100'000, 20'000);
-  renderOnBothDevices(scene, small, 21, estimators(true, false, false));
-  const RenderResult connectedSmall = renderOnBothDevices(scene, small, 22, estimators(true, false));
-  renderOnBothDevices(scene, small, 23, estimators(false, true));
+  testing::renderOnBothDevices(scene, small, 21, estimators(true, false, false));
+  const RenderResult connectedSmall = testing::renderOnBothDevices(scene, small, 22, estimators(true, false));
+  testing::renderOnBothDevices(scene, small, 23, estimators(false, true));
   // Lavapipe's general pipeline (the camera model chosen at run time, not
   // specialised to the scene) gives the same film.
-  const RenderResult general = renderOn(DeviceChoice::Gpu, scene, small, 22, estimators(true, false), true);
+  const RenderResult general = testing::renderOn(DeviceChoice::Gpu, scene, small, 22, estimators(true, false), true);
   EXPECT_TRUE(general.histogram.counts() == connectedSmall.histogram.counts()) << "general pipeline differs";
   EXPECT_TRUE(general.histogram.squaredWeightSums() == connectedSmall.histogram.squaredWeightSums());
 
@@ -284,16 +257,17 @@ TEST(OpticsThinLens, PlateThroughTheLensAgreesAcrossEstimators) {
   // pixel within 5 sigma of their combined standard errors, by chi-square
   // and in total (testing::compareRenders).
   const uint64_t analogBeams = testing::scaledBeams(8'000'000, 1'000'000);
-  const RenderResult analog = renderOn(DeviceChoice::Cpu, scene, analogBeams, 11, estimators(true, false, false));
+  const RenderResult analog =
+      testing::renderOn(DeviceChoice::Cpu, scene, analogBeams, 11, estimators(true, false, false));
   const testing::PixelEstimates reference = testing::pixelEstimates(analog.histogram, analog.plan, analogBeams);
   const uint64_t connectBeams = testing::scaledBeams(1'000'000, 200'000);
-  const RenderResult connected = renderOn(DeviceChoice::Cpu, scene, connectBeams, 12, estimators(true, false));
+  const RenderResult connected = testing::renderOn(DeviceChoice::Cpu, scene, connectBeams, 12, estimators(true, false));
   const auto vsConnected = testing::compareRenders(
       reference, testing::pixelEstimates(connected.histogram, connected.plan, connectBeams), "analog vs connected");
   EXPECT_EQ(vsConnected.cells, 64);
   EXPECT_GT(vsConnected.pValue, 0.001);
   const uint64_t paths = testing::scaledBeams(400'000, 100'000);
-  const RenderResult camera = renderOn(DeviceChoice::Cpu, scene, paths, 13, estimators(false, true));
+  const RenderResult camera = testing::renderOn(DeviceChoice::Cpu, scene, paths, 13, estimators(false, true));
   const auto vsCamera = testing::compareRenders(
       reference, testing::pixelEstimates(camera.histogram, camera.plan, paths), "analog vs camera paths");
   EXPECT_EQ(vsCamera.cells, 64);

@@ -1,0 +1,45 @@
+#pragma once
+// A scene rendered on one device, or on both with the same beams, for the
+// optics tests that check a closed form on the CPU's film after lavapipe's
+// film has been shown equal to it.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+
+#include "render/renderer.h"
+
+namespace spectrace::testing {
+
+// Without checkpoints; the general pipeline (nothing specialised to the
+// scene) when asked. Prints the device, the time and the counted beams.
+inline RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t beams, uint64_t seed,
+                             const CompileOptions& plan = {}, bool generalPipeline = false) {
+  RenderOptions options;
+  if (generalPipeline) options.tracer.specialisedFeatures = kSpecialiseNone;
+  options.beams = beams;
+  options.seed = seed;
+  options.device = device;
+  options.plan = plan;
+  options.loop.checkpointSeconds = 0.0;
+  RenderResult result = render(scene, options);
+  EXPECT_EQ(result.deviceKind, device == DeviceChoice::Gpu ? DeviceKind::Vulkan : DeviceKind::Cpu);
+  std::printf("  %s: %llu beams in %.2f s, %llu counted\n", result.deviceName.c_str(), (unsigned long long)beams,
+              result.traceWallSeconds, (unsigned long long)result.summary.countedBeams);
+  return result;
+}
+
+// The scene on lavapipe and on the CPU reference with the same beams: the
+// films must be equal bit for bit. Returns the CPU's render.
+inline RenderResult renderOnBothDevices(const Scene& scene, uint64_t beams, uint64_t seed,
+                                        const CompileOptions& plan = {}) {
+  const RenderResult gpu = renderOn(DeviceChoice::Gpu, scene, beams, seed, plan);
+  RenderResult cpu = renderOn(DeviceChoice::Cpu, scene, beams, seed, plan);
+  EXPECT_GT(cpu.summary.countedBeams, 0u);
+  EXPECT_TRUE(gpu.histogram.counts() == cpu.histogram.counts()) << "lavapipe and the CPU reference binned differently";
+  EXPECT_TRUE(gpu.histogram.colourSums() == cpu.histogram.colourSums()) << "colour sums differ";
+  EXPECT_TRUE(gpu.histogram.squaredWeightSums() == cpu.histogram.squaredWeightSums()) << "squared weights differ";
+  return cpu;
+}
+
+}  // namespace spectrace::testing
