@@ -15,8 +15,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The test process's folder, removed with everything in it when the process
+// exits (each test runs in a process of its own).
+const fs::path& processDir() {
+  static const struct Folder {
+    fs::path path;
+    ~Folder() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } folder{fs::temp_directory_path() / ("spectrace_overlap_" + std::to_string(::getpid()))};
+  return folder.path;
+}
+
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("spectrace_overlap_" + std::to_string(::getpid())) / name;
+  const fs::path dir = processDir() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -9,13 +9,21 @@
 
 namespace spectrace::fuzz {
 
+// Removed, with what it holds, when the process exits normally (a finding's
+// abort leaves it; libFuzzer saves the input itself).
 const std::filesystem::path& scratchDir() {
-  static const std::filesystem::path dir = [] {
+  static const struct Scratch {
+    std::filesystem::path dir;
+    ~Scratch() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  } scratch{[] {
     auto d = std::filesystem::temp_directory_path() / ("spectrace-fuzz-" + std::to_string(getpid()));
     std::filesystem::create_directories(d);
     return d;
-  }();
-  return dir;
+  }()};
+  return scratch.dir;
 }
 
 void writeBytes(const std::filesystem::path& file, const uint8_t* data, size_t size) {

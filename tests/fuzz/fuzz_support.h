@@ -9,7 +9,8 @@
 
 namespace spectrace::fuzz {
 
-// /tmp/spectrace-fuzz-<pid>/ (TMPDIR respected), created on first use.
+// /tmp/spectrace-fuzz-<pid>/ (TMPDIR respected), created on first use and
+// removed when the process exits normally.
 const std::filesystem::path& scratchDir();
 // Writes the input's bytes to `file` (replacing it); aborts if it cannot.
 void writeBytes(const std::filesystem::path& file, const uint8_t* data, size_t size);
