@@ -59,6 +59,12 @@ class NumberStream {
   size_t at_ = 0;
 };
 
+// Neighbouring angles at least this far apart (degrees): far below any
+// real table's steps, and far enough that the kernel's angles in turns
+// (floats) stay distinct and a patch's sin(gamma) envelope stays well above
+// its float slack.
+constexpr double kMinAngleStepDeg = 1e-3;
+
 // Angles in degrees, strictly ascending; `what` names them in messages.
 std::vector<double> readAngles(NumberStream& in, size_t n, const std::string& what, const std::string& name) {
   std::vector<double> angles;
@@ -68,6 +74,9 @@ std::vector<double> readAngles(NumberStream& in, size_t n, const std::string& wh
     if (i > 0 && !(angles[i] > angles[i - 1]))
       fail(name, line, fmt::format("{} angle {} of {} is {}, not above the one before ({}): angles must ascend", what,
                                    i + 1, n, angles[i], angles[i - 1]));
+    if (i > 0 && angles[i] - angles[i - 1] < kMinAngleStepDeg)
+      fail(name, line, fmt::format("{} angle {} of {} is {}, within {} degrees of the one before ({})", what, i + 1, n,
+                                   angles[i], kMinAngleStepDeg, angles[i - 1]));
   }
   return angles;
 }
@@ -132,6 +141,25 @@ void setColumns(PhotometricTable& table, std::vector<std::pair<double, size_t>> 
     table.cDegrees.push_back(c);
     table.candela.insert(table.candela.end(), values.begin() + std::ptrdiff_t(column * perColumn),
                          values.begin() + std::ptrdiff_t((column + 1) * perColumn));
+  }
+  // The table is periodic in C: where the images miss C = 0 or 360 (a 90-270
+  // file without 180), the column there lies between the last C and the
+  // first C + 360, as the interpolation across 0 has it.
+  const double low = table.cDegrees.front(), high = table.cDegrees.back();
+  if (low > 0.0 || high < 360.0) {
+    const double t = (360.0 - high) / (low + 360.0 - high);
+    std::vector<double> wrapped(perColumn);
+    const size_t last = table.candela.size() - perColumn;
+    for (size_t g = 0; g < perColumn; ++g)
+      wrapped[g] = table.candela[last + g] + t * (table.candela[g] - table.candela[last + g]);
+    if (high < 360.0) {
+      table.cDegrees.push_back(360.0);
+      table.candela.insert(table.candela.end(), wrapped.begin(), wrapped.end());
+    }
+    if (low > 0.0) {
+      table.cDegrees.insert(table.cDegrees.begin(), 0.0);
+      table.candela.insert(table.candela.begin(), wrapped.begin(), wrapped.end());
+    }
   }
 }
 
@@ -305,7 +333,8 @@ class LdtLines {
     return lines_[at_++];
   }
   // A decimal comma ("0,85"), as files written in comma locales have it, is
-  // read as a point: with one field a line it cannot separate fields.
+  // read as a point: with one field a line it cannot separate fields (and
+  // EULUMDAT has no thousands separators: "1,000" is 1).
   double number(const std::string& what) {
     const size_t line = this->line();
     const std::string_view t = text(what);
@@ -384,19 +413,20 @@ PhotometricTable parseEulumdat(std::string_view text, const std::string& name) {
   for (size_t k = 0; k < planeCount; ++k) {
     const size_t line = in.line();
     cAngles.push_back(in.number(fmt::format("C angle {} of {}", k + 1, planeCount)));
-    if (!(cAngles[k] >= 0.0 && cAngles[k] < 360.0) || (k > 0 && !(cAngles[k] > cAngles[k - 1])))
-      fail(name, line, fmt::format("C angle {} of {} is {}: C angles must ascend from 0 below 360", k + 1, planeCount,
-                                   cAngles[k]));
+    if (!(cAngles[k] >= 0.0 && cAngles[k] < 360.0) || (k > 0 && !(cAngles[k] >= cAngles[k - 1] + kMinAngleStepDeg)))
+      fail(name, line,
+           fmt::format("C angle {} of {} is {}: C angles must ascend from 0 below 360, at least {} degrees apart", k + 1,
+                       planeCount, cAngles[k], kMinAngleStepDeg));
   }
   if (cAngles.front() != 0.0) fail(name, cLine, fmt::format("the first C angle is {}, not 0", cAngles.front()));
-  const size_t gammaLine = in.line();
   std::vector<double> gammas;
   for (size_t k = 0; k < gammaCount; ++k) {
     const size_t line = in.line();
     gammas.push_back(in.number(fmt::format("gamma angle {} of {}", k + 1, gammaCount)));
-    if (!(gammas[k] >= 0.0 && gammas[k] <= 180.0) || (k > 0 && !(gammas[k] > gammas[k - 1])))
-      fail(name, line, fmt::format("gamma angle {} of {} is {}: gamma angles must ascend within 0 to 180", k + 1,
-                                   gammaCount, gammas[k]));
+    if (!(gammas[k] >= 0.0 && gammas[k] <= 180.0) || (k > 0 && !(gammas[k] >= gammas[k - 1] + kMinAngleStepDeg)))
+      fail(name, line,
+           fmt::format("gamma angle {} of {} is {}: gamma angles must ascend within 0 to 180, at least {} degrees apart",
+                       k + 1, gammaCount, gammas[k], kMinAngleStepDeg));
   }
 
   // The planes the file holds (EULUMDAT's Mc1 to Mc2), and where each
@@ -452,8 +482,6 @@ PhotometricTable parseEulumdat(std::string_view text, const std::string& name) {
   table.ratedLumens = flux[0];
   table.inputWatts = watts[0];
   setColumns(table, std::move(images), values, gammaCount);
-  if (table.cDegrees.front() != 0.0 || table.cDegrees.back() != 360.0)
-    fail(name, gammaLine, "the C planes do not cover 0 to 360 degrees");
   return table;
 }
 

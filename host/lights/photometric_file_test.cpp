@@ -115,6 +115,30 @@ TEST(IesFile, BilateralSymmetriesUnfold) {
   EXPECT_DOUBLE_EQ(old.intensity(315.0, 0.0), old.intensity(225.0, 0.0));
 }
 
+TEST(IesFile, NinetyToTwoSeventyWithout180WrapsAcrossZero) {
+  // 90, 150, 210, 270: the images are 90-270 and 330-30 across 0, with no
+  // column at 0 or 360 of their own; the table gets one, interpolated
+  // between C 330 (the image of 210) and C 390 (that of 150), halfway.
+  const PhotometricTable t =
+      parseIes(iesFile("1000", "1", "0 90", "90 150 210 270", {"10 1", "20 2", "40 4", "30 3"}, 2, 4), "wrap.ies");
+  EXPECT_EQ(t.cDegrees, (std::vector<double>{0, 30, 90, 150, 210, 270, 330, 360}));
+  EXPECT_DOUBLE_EQ(t.intensity(0.0, 0.0), 0.9 * 30.0);
+  EXPECT_DOUBLE_EQ(t.intensity(360.0, 0.0), 0.9 * 30.0);
+  EXPECT_DOUBLE_EQ(t.intensity(15.0, 0.0), 0.9 * 25.0);  // a quarter of the way from 330 to 390
+  EXPECT_NEAR(t.tableLumens(), quadratureLumens(t), 1e-6 * t.tableLumens());
+}
+
+TEST(IesFile, AnglesCloserThanAThousandthOfADegreeAreRefused) {
+  try {
+    parseIes(iesFile("1000", "1", "0 45 45.0005 90", "0", {"1 1 1 1"}, 4, 1), "close.ies");
+    FAIL() << "accepted";
+  } catch (const PhotometricFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("close.ies:7: vertical angle 3 of 4 is 45.0005, within 0.001 degrees"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(IesFile, FullTableKeepsItsAsymmetry) {
   const PhotometricTable t = parseIes(
       iesFile("1000", "1", "0 90 180", "0 90 180 270 360", {"1 1 0", "2 2 0", "3 3 0", "4 4 0", "1 1 0"}, 3, 5),

@@ -88,9 +88,12 @@ void pack(const Light& light, device::LightRecord& record, SceneData& data) {
       const size_t at = c * nG + g;
       const double corner = std::max({intensity[at], intensity[at + 1], intensity[at + nG], intensity[at + nG + 1]});
       // The kernel's sine (cosSin2Pi) is within 4e-7 of the true one, and the
-      // bilinear value within an ulp or two of the largest corner.
+      // bilinear value within an ulp or two of the largest corner. A patch
+      // whose corners are below 1e-30 of the table's flux per steradian
+      // (float values near underflow) is never drawn: it holds nothing a
+      // render can show.
       const double bound = corner * (sinMax + 1e-6) * (1.0 + 1e-6);
-      weights.push_back(std::max(table.patchLumens(c, g), 0.0));
+      weights.push_back(corner > 1e-30 ? std::max(table.patchLumens(c, g), 0.0) : 0.0);
       envelope.push_back(bound > 0.0 ? floatAtLeast(bound) : 1.0f);
       if (weights.back() > 0.0) {
         const double area = (table.cDegrees[c + 1] - table.cDegrees[c]) * kRad * (g1 - g0);
@@ -100,8 +103,9 @@ void pack(const Light& light, device::LightRecord& record, SceneData& data) {
   }
   // A patch's acceptance is its mean of I sin(gamma) over the envelope:
   // about 1/12 at worst (one lit corner at the pole, where sin(gamma)
-  // vanishes), so some 500 tries. They bound the chance that a beam runs out
-  // of them by 2^-64.
+  // vanishes), so some 500 tries; the envelope's slack lowers it only in a
+  // patch at the pole narrower than the readers allow (0.001 degrees). The
+  // tries bound the chance that a beam runs out of them by 2^-64.
   const double tries = std::ceil(64.0 * std::numbers::ln2 / -std::log1p(-std::min(leastAcceptance, 0.999999)));
   if (!(tries >= 1.0 && tries <= 4096.0))
     throw std::logic_error(fmt::format("{}: photometric patch acceptance {} needs {} tries", light.label,

@@ -11,7 +11,8 @@
 // direction inside it by rejection, proposing C and gamma uniformly and
 // accepting with I(C, gamma) sin(gamma) / (the patch's envelope), so the
 // accepted density is I sin(gamma) over the patch's flux, and over all
-// patches I / (the table's flux). The host sets the number of tries so that
+// patches I / (the table's flux), to float precision (the acceptance ratio
+// as a float, truncated to 2^-32). The host sets the number of tries so that
 // a beam runs out of them with probability below 2^-64 (then it carries
 // nothing).
 #ifndef SPECTRACE_LIGHTS_PHOTOMETRIC_H
@@ -84,8 +85,9 @@ FN float emitPhotometricBeam(LightRecord light, uvec4 geometry, uint64_t beamInd
     PRECISE float gTurns = g0 + r * (g1 - g0);
     vec2 gamma = cosSin2Pi(gTurns);
     PRECISE float density = photometricBilinear(t, c, g, s, r) * max(gamma.y, 0.0f);
-    // Accepted with probability density / envelope, to 2^-24 of itself
-    // whatever its size: the 32-bit word against the ratio in 2^-32 units.
+    // Accepted with probability density / envelope as a float (24 bits),
+    // truncated to a multiple of 2^-32: the 32-bit word against the ratio
+    // in 2^-32 units.
     PRECISE float threshold = (density / envelope) * 4294967296.0f;
     if (threshold >= 4294967296.0f || words.z < uint(threshold)) {
       PRECISE float cTurns = c0 + s * (c1 - c0);
