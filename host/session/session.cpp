@@ -211,14 +211,8 @@ void checkOutputPath(const RenderJob& job, const std::vector<std::filesystem::pa
     if (!ownState) all.push_back(input);  // resuming replaces its own state
   }
   all.push_back(job.scene.sourcePath);
-  for (const Light& light : job.scene.lights) {  // the scene's CSV spectra and luminaire files
-    all.push_back(light.spdFile);
-    all.push_back(light.photometryFile);
-  }
-  for (const SceneObject& object : job.scene.objects) {  // its OBJ meshes and reflectance CSVs
-    all.push_back(object.shape.meshFile);
-    all.push_back(object.material.reflectanceFile);
-  }
+  // The files the scene names: CSV spectra, luminaire files, OBJ meshes.
+  for (const std::filesystem::path& file : referencedFiles(job.scene)) all.push_back(file);
   checkOutputFiles(outputFilesOf(job.output, job.png, job.state, job.stateRole), all);
 }
 
