@@ -247,6 +247,12 @@ SPECTRACE_CONSTANT uint kBvhMaxDepth = 32u;
 // plus one.
 SPECTRACE_CONSTANT uint kBvhStackSize = 97u;
 SPECTRACE_CONSTANT uint kBvhMaxLeafPrimitives = 8u;
+// The traversal stack keeps a slot's child and count in one word, child <<
+// kBvhCountBits | count (one scratch array fewer for each lane on
+// lavapipe), so leaves hold fewer than 2^kBvhCountBits primitives and
+// node and primitive indices stay below kBvhMaxIndex.
+SPECTRACE_CONSTANT uint kBvhCountBits = 4u;
+SPECTRACE_CONSTANT uint kBvhMaxIndex = 1u << (32u - kBvhCountBits);
 
 // The scene data: one buffer of 32-bit words where a unit (a light, camera
 // or material type) keeps parameters and tables of any length, addressed by
@@ -567,6 +573,7 @@ inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1}
 inline constexpr BindingSlot kRngCheckBindings[] = {{kBindingRngWords, 1}};
 
 static_assert(sizeof(LightRecord) == 152);
+static_assert(kBvhMaxLeafPrimitives < (1u << kBvhCountBits));
 static_assert(sizeof(SpectralInterval) == 24);
 static_assert(sizeof(TraceConstants) == 176);
 static_assert(offsetof(TraceConstants, cameraParams) == 140);

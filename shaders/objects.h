@@ -117,8 +117,7 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
   hit.primitive = 0u;
   bool found = false;
   vec3 inverse = inverseDirection(direction);
-  uint stackChild[kBvhStackSize];
-  uint stackCount[kBvhStackSize];
+  uint stackEntry[kBvhStackSize];  // child << kBvhCountBits | count
   float stackEnter[kBvhStackSize];
   uint depth = 0u;
   uint child = 0u;  // the root
@@ -158,8 +157,7 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
       // Far to near onto the stack, the nearest on top.
       for (int k = 3; k >= 0; --k) {
         if (key[k] == 3.4e38f) continue;
-        stackChild[depth] = node.child[slot[k]];
-        stackCount[depth] = node.count[slot[k]];
+        stackEntry[depth] = (node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]];
         stackEnter[depth] = key[k];
         depth += 1u;
         prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
@@ -174,8 +172,8 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
       next = stackEnter[depth] <= reach;
     }
     if (!next) break;
-    child = stackChild[depth];
-    count = stackCount[depth];
+    child = stackEntry[depth] >> kBvhCountBits;
+    count = stackEntry[depth] & ((1u << kBvhCountBits) - 1u);
   }
   return found;
 }

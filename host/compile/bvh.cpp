@@ -276,9 +276,11 @@ class Builder {
 }  // namespace
 
 BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds, unsigned threads) {
-  // Node indices are uint32 and a tree has up to 2n - 1 nodes.
-  if (bounds.size() > (size_t(1) << 31))
-    throw std::invalid_argument(fmt::format("BVH: {} primitives, more than 2^31", bounds.size()));
+  // A tree has up to 2n - 1 binary nodes and fewer wide ones; the kernel's
+  // stack packs primitive and wide node indices below device::kBvhMaxIndex.
+  if (bounds.size() >= device::kBvhMaxIndex)
+    throw std::invalid_argument(
+        fmt::format("BVH: {} primitives, at most {}", bounds.size(), device::kBvhMaxIndex - 1));
   for (size_t i = 0; i < bounds.size(); ++i) {
     const PrimitiveBounds& b = bounds[i];
     for (int a = 0; a < 3; ++a)

@@ -25,9 +25,9 @@ device::Material deviceMaterial(const SurfaceMaterial& material, DeviceScene& de
   return record;
 }
 
-// Every primitive in one leaf under a root that bounds them all: the
-// kernel then tests each one (the bench's brute force).
-WideBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_t>& order) {
+// Every primitive in leaves under nodes whose boxes all bound them all:
+// the kernel then tests each one (the bench's brute force).
+WideBvh flatTree(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_t>& order) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (uint32_t i = 0; i < bounds.size(); ++i) {
     lo = glm::min(lo, bounds[i].lo);
@@ -35,7 +35,7 @@ WideBvh oneLeaf(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_t
     order.push_back(i);
   }
   const PrimitiveBounds all = paddedBounds(lo, hi);
-  return singleLeafBvh(glm::vec3(all.lo) - glm::vec3(1e-6f), glm::vec3(all.hi) + glm::vec3(1e-6f),
+  return flatBvh(glm::vec3(all.lo) - glm::vec3(1e-6f), glm::vec3(all.hi) + glm::vec3(1e-6f),
                        uint32_t(bounds.size()));
 }
 
@@ -59,7 +59,7 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
   for (const PlacedPrimitive& p : placed) bounds.push_back(p.bounds);
   std::vector<uint32_t> order;
   if (options.bruteForceObjects) {
-    device.bvhNodes = oneLeaf(bounds, order).nodes;
+    device.bvhNodes = flatTree(bounds, order).nodes;
   } else {
     BuiltBvh binary = buildBvh(bounds);
     device.bvhNodes = widenBvh(binary).nodes;

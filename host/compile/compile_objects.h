@@ -13,7 +13,8 @@ namespace spectrace {
 // tables in device.data), and the object constants (objectPrimitives,
 // maxBounces, connect). options.connect: camera connections at diffuse
 // vertices (kept only when some object's material connects);
-// options.bruteForceObjects: one leaf instead of the BVH.
+// options.bruteForceObjects: a flat tree that tests every primitive
+// instead of the BVH.
 void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device);
 
 }  // namespace spectrace

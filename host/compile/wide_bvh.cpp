@@ -96,11 +96,31 @@ WideBvh widenBvh(const BuiltBvh& binary) {
   return out;
 }
 
-WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) {
+WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) {
   WideBvh out;
-  out.nodes.push_back(device::BvhNode{});
-  setSlot(out.nodes[0], 0, lo, hi, 0u, count);
-  out.depth = 1;
+  // Levels of nodes: each holds four subtrees of `capacity` primitives.
+  uint64_t capacity = device::kBvhMaxLeafPrimitives;
+  uint32_t levels = 1;
+  for (; capacity * kWidth < count; capacity *= kWidth) ++levels;
+  out.depth = levels;
+  // Depth first, as widenBvh lays out its nodes.
+  const auto emit = [&](auto& self, uint32_t first, uint32_t n, uint64_t slotCapacity) -> uint32_t {
+    const uint32_t index = uint32_t(out.nodes.size());
+    out.nodes.push_back(device::BvhNode{});
+    for (uint32_t k = 0; k < kWidth && n > 0; ++k) {
+      const uint32_t part = uint32_t(std::min<uint64_t>(n, slotCapacity));
+      if (slotCapacity == device::kBvhMaxLeafPrimitives) {
+        setSlot(out.nodes[index], k, lo, hi, first, part);
+      } else {
+        const uint32_t child = self(self, first, part, slotCapacity / kWidth);
+        setSlot(out.nodes[index], k, lo, hi, child, 0u);
+      }
+      first += part;
+      n -= part;
+    }
+    return index;
+  };
+  emit(emit, 0u, count, capacity);
   return out;
 }
 

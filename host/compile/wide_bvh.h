@@ -28,9 +28,10 @@ struct WideBvh {
 // binary.order's order.
 WideBvh widenBvh(const BuiltBvh& binary);
 
-// A root with one leaf: primitives [0, count) in the box [lo, hi] (the
-// bench's brute force; count at most 2^31).
-WideBvh singleLeafBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
+// Primitives [0, count) in leaves of device::kBvhMaxLeafPrimitives under
+// nodes whose every box is [lo, hi]: a walk tests every primitive, in
+// order (the bench's brute force). count below device::kBvhMaxIndex.
+WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
 
 // Whether slot k of a node holds nothing (device::BvhNode: count and child
 // both 0, the root being nobody's child).

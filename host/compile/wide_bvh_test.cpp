@@ -301,12 +301,46 @@ TEST(WideBvh, TiesAtSharedEdgesAndVerticesResolveAsBruteForce) {
   EXPECT_LT(misses, 600) << "most rays aimed at the surface hit it";
 }
 
-// The same triangles in one brute-force leaf and in the tree: the same hits.
-TEST(WideBvh, SingleLeafTreeWalksLikeTheBvh) {
+// The brute force's flat tree holds each primitive once, in order, in
+// full leaves, under as few levels as four-wide nodes allow.
+TEST(WideBvh, FlatTreeHoldsEveryPrimitiveOnceInOrder) {
+  for (uint32_t count : {1u, 8u, 9u, 32u, 33u, 1000u, 4097u}) {
+    const WideBvh flat = flatBvh(vec3(-1.0f), vec3(2.0f), count);
+    uint32_t next = 0;
+    uint32_t deepest = 0;
+    const auto visit = [&](auto& self, uint32_t index, uint32_t level) -> void {
+      deepest = std::max(deepest, level);
+      const device::BvhNode& node = flat.nodes.at(index);
+      for (int k = 0; k < 4; ++k) {
+        if (isEmptySlot(node, k)) continue;
+        EXPECT_EQ(node.minX[k], -1.0f);
+        EXPECT_EQ(node.maxZ[k], 2.0f);
+        if (node.count[k] == 0) {
+          self(self, node.child[k], level + 1);
+          continue;
+        }
+        EXPECT_EQ(node.child[k], next) << count << " primitives";
+        EXPECT_LE(node.count[k], device::kBvhMaxLeafPrimitives);
+        next += node.count[k];
+      }
+    };
+    visit(visit, 0, 1);
+    EXPECT_EQ(next, count);
+    EXPECT_EQ(deepest, flat.depth);
+    // 8 primitives a leaf, 4 leaves a node, 16 a node's grandchildren...
+    uint32_t levels = 1;
+    for (uint64_t capacity = 32; capacity < count; capacity *= 4) ++levels;
+    EXPECT_EQ(flat.depth, levels) << count << " primitives";
+  }
+}
+
+// The same triangles in the brute force's flat tree and in the BVH: the
+// same hits.
+TEST(WideBvh, FlatTreeWalksLikeTheBvh) {
   const Soup soup = heightField(16);
   const Tree t = treeOf(soup);
-  const WideBvh leaf = singleLeafBvh(vec3(-1.0f), vec3(2.0f), uint32_t(t.primitives.size()));
-  Walker tree(t.primitives, t.wide.nodes), flat(t.primitives, leaf.nodes);
+  const WideBvh leaves = flatBvh(vec3(-1.0f), vec3(2.0f), uint32_t(t.primitives.size()));
+  Walker tree(t.primitives, t.wide.nodes), flat(t.primitives, leaves.nodes);
   std::mt19937_64 rng(14);
   for (int r = 0; r < 2000; ++r) {
     const vec3 origin = vec3(0.5f, 0.5f, 1.0f) + 0.3f * unitVector(rng);
