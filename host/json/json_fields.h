@@ -54,6 +54,10 @@ struct Source {
   void (*raise)(const std::string& message) = nullptr;
 
   [[noreturn]] void fail(const std::string& ptr, const std::string& what) const;
+  // A path the document names, as written when absolute, else against dir.
+  std::filesystem::path resolve(const std::filesystem::path& path) const {
+    return path.is_absolute() ? path : (dir / path).lexically_normal();
+  }
 };
 
 // Arrays and objects nest at most this deep in any JSON we read: scenes need

@@ -51,7 +51,7 @@ void parse(const jf::Source& c, const jf::Json& v, const std::string& ptr, Light
   const std::string written =
       jf::getString(c, jf::require(c, v, ptr, "file", " (an IES LM-63 .ies or EULUMDAT .ldt file)"), fp);
   const fs::path path(written);
-  const fs::path resolved = path.is_absolute() ? path : (c.dir / path).lexically_normal();
+  const fs::path resolved = c.resolve(path);
   try {
     light.photometry = std::make_shared<const PhotometricTable>(readPhotometricFile(resolved));
   } catch (const PhotometricFileError& e) {

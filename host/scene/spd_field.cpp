@@ -127,7 +127,7 @@ ResolvedSpd resolveSpd(const jf::Source& c, const Json& v, const std::string& p,
       std::optional<std::string> column;
       if (auto* x = find(v, "column")) column = getString(c, *x, child(p, "column"));
       fs::path path(rel);
-      fs::path resolved = path.is_absolute() ? path : (c.dir / path).lexically_normal();
+      fs::path resolved = c.resolve(path);
       std::error_code ec;
       // A scene developed from a state reads its CSVs from the state, not the disk.
       const bool onDisk = !BundledInputFiles::active();

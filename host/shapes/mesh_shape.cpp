@@ -50,7 +50,7 @@ void parse(const jf::Source& c, const jf::Json& v, const std::string& p, const S
   MeshTransform transform;
   if (auto* t = jf::find(v, "transform")) transform = parseTransform(c, *t, jf::child(p, "transform"));
   const fs::path path(rel);
-  const fs::path resolved = path.is_absolute() ? path : (c.dir / path).lexically_normal();
+  const fs::path resolved = c.resolve(path);
   const std::string notClosed = loadObjMesh(c, fp, resolved, rel, transform, reading.trianglesLeft, shape);
   if (reading.closedFor && !notClosed.empty())
     c.fail(reading.materialPtr, needsClosedShape(reading.closedFor, fmt::format("; {} is not closed: {}",
