@@ -39,8 +39,9 @@ struct BuiltBvh {
 // Builds the BVH. Leaves hold at most device::kBvhMaxLeafPrimitives; where
 // SAH splits would make the tree too deep, median splits take over. Throws
 // std::invalid_argument for bounds that are not finite or have lo > hi, or
-// for device::kBvhMaxIndex (2^28) primitives or more. Large trees are built on up to `threads`
-// threads (0: one per hardware thread); the tree does not depend on them.
+// for device::kBvhMaxIndex (2^28) primitives or more. Large trees are built
+// on up to `threads` threads (0: one per hardware thread); the tree does not
+// depend on them.
 BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds, unsigned threads = 0);
 
 }  // namespace spectrace

@@ -35,8 +35,7 @@ WideBvh flatTree(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_
     order.push_back(i);
   }
   const PrimitiveBounds all = paddedBounds(lo, hi);
-  return flatBvh(glm::vec3(all.lo) - glm::vec3(1e-6f), glm::vec3(all.hi) + glm::vec3(1e-6f),
-                       uint32_t(bounds.size()));
+  return flatBvh(glm::vec3(all.lo) - glm::vec3(1e-6f), glm::vec3(all.hi) + glm::vec3(1e-6f), uint32_t(bounds.size()));
 }
 
 }  // namespace
