@@ -332,6 +332,8 @@ TEST(WideBvh, FlatTreeHoldsEveryPrimitiveOnceInOrder) {
     for (uint64_t capacity = 32; capacity < count; capacity *= 4) ++levels;
     EXPECT_EQ(flat.depth, levels) << count << " primitives";
   }
+  // The walk's stack word holds indices below kBvhMaxIndex.
+  EXPECT_THROW(flatBvh(vec3(-1.0f), vec3(2.0f), device::kBvhMaxIndex), std::invalid_argument);
 }
 
 // The same triangles in the brute force's flat tree and in the BVH: the
