@@ -275,12 +275,14 @@ class Builder {
 
 }  // namespace
 
+void checkBvhPrimitiveCount(size_t count) {
+  if (count >= device::kBvhMaxIndex)
+    throw std::invalid_argument(fmt::format("BVH: {} primitives, at most {}", count, device::kBvhMaxIndex - 1));
+}
+
 BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds, unsigned threads) {
-  // A tree has up to 2n - 1 binary nodes and fewer wide ones; the kernel's
-  // stack packs primitive and wide node indices below device::kBvhMaxIndex.
-  if (bounds.size() >= device::kBvhMaxIndex)
-    throw std::invalid_argument(
-        fmt::format("BVH: {} primitives, at most {}", bounds.size(), device::kBvhMaxIndex - 1));
+  // A tree has up to 2n - 1 binary nodes and fewer wide ones.
+  checkBvhPrimitiveCount(bounds.size());
   for (size_t i = 0; i < bounds.size(); ++i) {
     const PrimitiveBounds& b = bounds[i];
     for (int a = 0; a < 3; ++a)

@@ -3,6 +3,7 @@
 // (binned SAH, pbrt-v4 style) and flattened depth first, the root at 0,
 // float bounds rounded outwards so that each node contains what it holds.
 // The kernel walks the four-wide tree made from it (compile/wide_bvh.h).
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,12 +37,16 @@ struct BuiltBvh {
   uint32_t depth = 0;
 };
 
+// Throws std::invalid_argument for device::kBvhMaxIndex (2^28) primitives
+// or more: the kernel's stack packs primitive and wide node indices below
+// it (shaders/objects.h).
+void checkBvhPrimitiveCount(size_t count);
+
 // Builds the BVH. Leaves hold at most device::kBvhMaxLeafPrimitives; where
 // SAH splits would make the tree too deep, median splits take over. Throws
 // std::invalid_argument for bounds that are not finite or have lo > hi, or
-// for device::kBvhMaxIndex (2^28) primitives or more. Large trees are built
-// on up to `threads` threads (0: one per hardware thread); the tree does not
-// depend on them.
+// as checkBvhPrimitiveCount does. Large trees are built on up to `threads`
+// threads (0: one per hardware thread); the tree does not depend on them.
 BuiltBvh buildBvh(std::span<const PrimitiveBounds> bounds, unsigned threads = 0);
 
 }  // namespace spectrace

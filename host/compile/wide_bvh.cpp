@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <stdexcept>
-
-#include <fmt/format.h>
 
 #include <glm/common.hpp>
 
@@ -100,8 +97,7 @@ WideBvh widenBvh(const BuiltBvh& binary) {
 }
 
 WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) {
-  if (count >= device::kBvhMaxIndex)
-    throw std::invalid_argument(fmt::format("BVH: {} primitives, at most {}", count, device::kBvhMaxIndex - 1));
+  checkBvhPrimitiveCount(count);
   WideBvh out;
   // Levels of nodes: each holds four subtrees of `capacity` primitives.
   uint64_t capacity = device::kBvhMaxLeafPrimitives;

@@ -30,8 +30,7 @@ WideBvh widenBvh(const BuiltBvh& binary);
 
 // Primitives [0, count) in leaves of device::kBvhMaxLeafPrimitives under
 // nodes whose every box is [lo, hi]: a walk tests every primitive, in
-// order (the bench's brute force). Throws std::invalid_argument for
-// device::kBvhMaxIndex primitives or more.
+// order (the bench's brute force). Throws as checkBvhPrimitiveCount does.
 WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
 
 // Whether slot k of a node holds nothing (device::BvhNode: count and child
