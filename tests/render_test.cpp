@@ -7,7 +7,7 @@
 
 #include "camera/pinhole_camera.h"
 #include "support/cpu_trace.h"
-#include "backend/vulkan_tracer.h"
+#include "backend/device.h"
 #include "render/renderer.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -23,17 +23,16 @@ Scene smallScene() {
   return scene;
 }
 
-RenderResult renderWith(DeviceChoice device, uint64_t beams, uint64_t batch, uint32_t workgroup = 64,
+RenderResult renderWith(const Device& device, uint64_t beams, uint64_t batch, uint32_t workgroup = 64,
                         unsigned threads = 0, uint64_t first = 0) {
   RenderOptions options;
   options.beams = beams;
   options.firstBeam = first;
   options.seed = 99;
-  options.device = device;
   options.loop.batchBeams = batch;
   options.tracer.workgroupSize = workgroup;
   options.tracer.cpuThreads = threads;
-  return render(smallScene(), options);
+  return render(smallScene(), options, device);
 }
 
 TEST(Render, AutoPicksAHardwareGpuElseTheCpuReference) {
@@ -110,21 +109,29 @@ TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
   // to the total at any test scale (700,001, 999,999, 1,234,567 at full).
   const uint64_t n = testing::scaledBeams(3'000'000, 300'000);
   const auto part = [n](uint64_t atFullScale) { return atFullScale * n / 3'000'000; };
-  const RenderResult gpuReference = renderWith(DeviceChoice::Gpu, n, n);
+  // One device of each kind for every render: a device keeps its compiled
+  // pipelines, and each render clears the film it takes from the device's
+  // buffers.
+  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
+  const std::unique_ptr<Device> cpu = Device::open(DeviceChoice::Cpu);
+  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
+  const RenderResult gpuReference = renderWith(*gpu, n, n);
   const auto& reference = gpuReference.histogram;
-  expectSameImage(renderWith(DeviceChoice::Gpu, n, part(700'001)).image, gpuReference.image, "gpu image, odd batches");
-  expectSameImage(renderWith(DeviceChoice::Gpu, n, 0, 32).image, gpuReference.image, "gpu image, workgroup 32");
-  expectSameImage(renderWith(DeviceChoice::Cpu, n, 0, 64, 1).image,
-                  renderWith(DeviceChoice::Cpu, n, part(999'999), 64, 2).image, "cpu image, 1 vs 2 threads");
   ASSERT_TRUE(reference.hasExactColour());
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, part(700'001)).histogram, reference, "odd batches");
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, 0, 256).histogram, reference, "workgroup 256");
-  expectSameHistogram(renderWith(DeviceChoice::Gpu, n, 0, 32).histogram, reference, "workgroup 32");
-  expectSameHistogram(renderWith(DeviceChoice::Cpu, n, 0, 64, 1).histogram, reference, "cpu, 1 thread");
-  expectSameHistogram(renderWith(DeviceChoice::Cpu, n, part(1'234'567), 64, 2).histogram, reference, "cpu, 2 threads");
+  const auto expectSameRender = [&](const RenderResult& result, const char* what) {
+    expectSameImage(result.image, gpuReference.image, what);
+    expectSameHistogram(result.histogram, reference, what);
+  };
+  expectSameRender(renderWith(*gpu, n, part(700'001)), "odd batches");
+  expectSameRender(renderWith(*gpu, n, 0, 256), "workgroup 256");
+  expectSameRender(renderWith(*gpu, n, 0, 32), "workgroup 32");
+  const RenderResult cpuOneThread = renderWith(*cpu, n, 0, 64, 1);
+  expectSameHistogram(cpuOneThread.histogram, reference, "cpu, 1 thread");
+  expectSameImage(cpuOneThread.image, renderWith(*cpu, n, part(999'999), 64, 2).image, "cpu image, 1 vs 2 threads");
+  expectSameHistogram(renderWith(*cpu, n, part(1'234'567), 64, 2).histogram, reference, "cpu, 2 threads");
   // Two renders over disjoint beam ranges merge into the whole.
-  auto first = renderWith(DeviceChoice::Gpu, n / 3, 0);
-  first.histogram.merge(renderWith(DeviceChoice::Cpu, n - n / 3, 0, 64, 0, n / 3).histogram);
+  auto first = renderWith(*gpu, n / 3, 0);
+  first.histogram.merge(renderWith(*cpu, n - n / 3, 0, 64, 0, n / 3).histogram);
   expectSameHistogram(first.histogram, reference, "merged halves");
 }
 
@@ -171,29 +178,34 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
       default: return 0;                      // light types, uniform tables: two lights, two SPDs
     }
   };
+  // One device for every render: it keeps its compiled pipelines by their
+  // code and constants, so the general pipeline, the same for every scene
+  // here, compiles once for each colour mode.
+  const std::unique_ptr<Device> device = Device::open(DeviceChoice::Gpu);
+  ASSERT_EQ(device->capabilities().kind, DeviceKind::Vulkan);
   for (bool exactColour : {true, false}) {
     for (size_t s = 0; s < scenes.size(); ++s) {
       const Scene& scene = scenes[s];
       RenderOptions options;
       options.beams = 250'000;
-      options.device = DeviceChoice::Gpu;
       options.plan.exactColour = exactColour;
-      const RenderResult specialised = render(scene, options);
+      const RenderResult specialised = render(scene, options, *device);
       options.tracer.specialisedFeatures = kSpecialiseNone;
-      const RenderResult general = render(scene, options);
+      const RenderResult general = render(scene, options, *device);
       EXPECT_GT(general.histogram.countedBeams, 1000u);
       expectSameHistogram(specialised.histogram, general.histogram, "specialised vs general");
       expectSameImage(specialised.image, general.image, "specialised vs general");
-      // Each specialisation alone (the benchmark measures them one by one),
-      // on the shared device: a render would open a device each time. With
-      // exact colour on only: each is a pipeline of its own to compile, and
-      // exact colour off is one of them (and compiled out in the whole
-      // specialisation above).
+      // Each specialisation alone (the benchmark measures them one by one).
+      // With exact colour on only: each is a pipeline of its own to
+      // compile, and exact colour off is one of them (and compiled out in
+      // the whole specialisation above).
       for (uint32_t feature = 1; everyFeatureAlone && exactColour && feature < kSpecialiseAll; feature <<= 1) {
         if (featureAloneScene(feature) != s) continue;
-        VulkanTracer alone(testing::sharedVulkan(), general.plan, 64, feature);
-        alone.trace(0, options.beams);
-        expectSameHistogram(alone.download(), general.histogram,
+        TracerOptions alone;
+        alone.specialisedFeatures = feature;
+        const std::unique_ptr<Tracer> tracer = device->makeTracer(general.plan, alone);
+        tracer->trace(0, options.beams);
+        expectSameHistogram(tracer->download(), general.histogram,
                             ("feature " + std::to_string(feature) + " alone vs general").c_str());
       }
     }
@@ -218,6 +230,10 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
   const std::vector<Case> cases = {{"532 nm line", makeLineSpd(532.0), 1},
                                    {"F11 (380-780 nm)", *cieIlluminant("F11"), 82},
                                    {"Gaussian 589 nm", makeLineSpd(589.0, 2.0), 3}};
+  // One device of each kind for every render: a device keeps its compiled pipelines.
+  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
+  const std::unique_ptr<Device> cpu = Device::open(DeviceChoice::Cpu);
+  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
   for (const auto& c : cases) {
     Scene scene = bareSensorScene(0.02, 0.02, 8, 8, 94);
     Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.01}, {0, 0, -1}, 1.0, c.spd);
@@ -225,13 +241,12 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
     scene.lights = {disk};
     const CompiledScene trimmed = compileScene(scene, 1);
     EXPECT_LE(trimmed.film.storedBins, c.maxStoredBins) << c.name;
-    for (DeviceChoice device : {DeviceChoice::Gpu, DeviceChoice::Cpu}) {
+    for (const Device* device : {gpu.get(), cpu.get()}) {
       RenderOptions options;
       options.beams = 1'000'000;
-      options.device = device;
-      const RenderResult a = render(scene, options);
+      const RenderResult a = render(scene, options, *device);
       options.plan.trimSpectrum = false;
-      const RenderResult b = render(scene, options);
+      const RenderResult b = render(scene, options, *device);
       EXPECT_EQ(b.plan.film.storedBins, 94u);
       EXPECT_GT(a.histogram.total(), 100'000u);
       expectSameHistogram(a.histogram, b.histogram, c.name);
@@ -277,6 +292,9 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     s.lights = {disk};
     cases.push_back({"pinhole: disk straddling the aperture plane", s, false});
   }
+  // One device for every render: it keeps its compiled pipelines.
+  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
+  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
   for (const auto& c : cases) {
     const CompiledScene plan = compileScene(c.scene, 1);
     std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.film.storedPixelCount(),
@@ -284,14 +302,13 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     EXPECT_EQ(plan.film.storedPixelCount() < plan.film.pixelCount(), c.smaller) << c.name;
     RenderOptions options;
     options.beams = 1'000'000;
-    options.device = DeviceChoice::Gpu;
     // Light paths: camera paths go to the stored pixels only, so trimming
     // moves them (the same expectation, other bits; the closed forms of
     // OpticsReference.EmitterSquareMatchesItsClosedForm hold it).
     options.plan.cameraPaths = false;
-    const RenderResult a = render(c.scene, options);
+    const RenderResult a = render(c.scene, options, *gpu);
     options.plan.trimPixels = false;
-    const RenderResult b = render(c.scene, options);
+    const RenderResult b = render(c.scene, options, *gpu);
     EXPECT_EQ(b.plan.film.storedPixelCount(), b.plan.film.pixelCount());
     EXPECT_GT(a.histogram.countedBeams, 10'000u) << c.name;
     expectSameHistogram(a.histogram, b.histogram, c.name);

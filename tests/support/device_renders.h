@@ -6,12 +6,26 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 
+#include "backend/device.h"
 #include "render/renderer.h"
 
 namespace spectrace::testing {
 
-// Without checkpoints; the general pipeline (nothing specialised to the
+// One device of each kind per test program, opened at first use: a device
+// keeps its compiled pipelines, so a test's second render of the same
+// pipeline skips lavapipe's compile, seconds a time.
+inline const Device& sharedDevice(DeviceChoice device) {
+  if (device == DeviceChoice::Gpu) {
+    static const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
+    return *gpu;
+  }
+  static const std::unique_ptr<Device> cpu = Device::open(device);
+  return *cpu;
+}
+
+// On the shared device of its kind, without checkpoints; the general pipeline (nothing specialised to the
 // scene) when asked. Prints the device, the time and the counted beams.
 inline RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t beams, uint64_t seed,
                              const CompileOptions& plan = {}, bool generalPipeline = false) {
@@ -19,10 +33,9 @@ inline RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t b
   if (generalPipeline) options.tracer.specialisedFeatures = kSpecialiseNone;
   options.beams = beams;
   options.seed = seed;
-  options.device = device;
   options.plan = plan;
   options.loop.checkpointSeconds = 0.0;
-  RenderResult result = render(scene, options);
+  RenderResult result = render(scene, options, sharedDevice(device));
   EXPECT_EQ(result.deviceKind, device == DeviceChoice::Gpu ? DeviceKind::Vulkan : DeviceKind::Cpu);
   std::printf("  %s: %llu beams in %.2f s, %llu counted\n", result.deviceName.c_str(), (unsigned long long)beams,
               result.traceWallSeconds, (unsigned long long)result.summary.countedBeams);
