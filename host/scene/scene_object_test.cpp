@@ -36,7 +36,8 @@ const char* kCubeFaces[6] = {"f 1 4 3 2\n", "f 5 6 7 8\n", "f 1 2 6 5\n",
                              "f 3 4 8 7\n", "f 1 5 8 4\n", "f 2 3 7 6\n"};
 
 std::string cubeObj(int skipFace = -1, int flipFace = -1) {
-  std::string text = std::string("# unit cube\no cube\n") + kCubeVertices;
+  std::string text = "# unit cube\no cube\n";
+  text += kCubeVertices;
   for (int f = 0; f < 6; ++f) {
     if (f == skipFace) continue;
     if (f == flipFace) {
