@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 namespace spectrace::json_fields {
 

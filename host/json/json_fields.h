@@ -14,7 +14,10 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
-#include <nlohmann/json.hpp>
+// Declarations only: the full JSON header takes seconds to parse, and most
+// files that reach this one (through the unit types' headers) never touch
+// a JSON value. Those that do include <nlohmann/json.hpp> themselves.
+#include <nlohmann/json_fwd.hpp>
 
 namespace spectrace::json_fields {
 

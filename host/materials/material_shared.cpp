@@ -8,6 +8,7 @@
 #include <span>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "spectrum/cie_data.h"
 

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "lights/light_type.h"
 #include "materials/material_type.h"

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "camera/world_limits.h"
 #include "lights/light_shared.h"
