@@ -16,6 +16,7 @@
 #include "film/spectral_histogram.h"
 #include "render/renderer.h"
 #include "spectrum/spd.h"
+#include "support/p_values.h"
 #include "support/statistics.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -64,8 +65,7 @@ void expectPointLightIrradiance(glm::dvec3 lightWorld, uint64_t beams, const cha
                                   << " W/m^2, expected " << expected << " +- " << sigma;
     }
   }
-  boost::math::chi_squared dist(pixels);
-  const double pValue = boost::math::cdf(boost::math::complement(dist, chi2));
+  const double pValue = testing::chiSquareUpperTail(chi2, pixels);
   std::printf("%s: %d pixels, chi2 = %.1f (p = %.3f), worst %.2f sigma, mean |rel. error| %.4f\n", name, pixels, chi2,
               pValue, worstSigmas, meanRelError / pixels);
   // Global test of all pixels together (p > 0.01 for this fixed seed).

@@ -25,6 +25,7 @@
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
 #include "rng/philox.h"
+#include "support/p_values.h"
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
@@ -352,7 +353,7 @@ double expectPointLightCounts(const SpectralHistogram& histogram, const Scene& s
   const int cells = camera.pixelsX * camera.pixelsY;
   const double zTotal = (double(total) - n * totalP) / std::sqrt(n * totalP * (1.0 - totalP));
   EXPECT_LE(std::abs(zTotal), kSigmas) << name << ": total";
-  const double pValue = boost::math::cdf(boost::math::complement(boost::math::chi_squared(cells), chi2));
+  const double pValue = testing::chiSquareUpperTail(chi2, cells);
   std::printf("%s: %llu hits (%+.2f sigma), chi2/dof %.3f (p %.3f), worst pixel %.2f sigma\n", name.c_str(),
               (unsigned long long)total, zTotal, chi2 / cells, pValue, worst);
   ::testing::Test::RecordProperty(propertyKey(name + "_worst_sigma"), std::to_string(worst));

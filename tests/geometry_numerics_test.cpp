@@ -31,6 +31,7 @@
 #include "compile/compile_scene.h"
 #include "backend/vulkan_tracer.h"
 #include "render/renderer.h"
+#include "support/p_values.h"
 #include "support/statistics.h"
 #include "support/beam_agreement.h"
 #include "support/test_scenes.h"
@@ -182,7 +183,7 @@ MatchStats expectCountsMatch(const SpectralHistogram& histogram, const Camera& c
   EXPECT_LE(std::abs(totalZ), kSigmas) << name << ": " << stats.hits << " hits in all, expected "
                                        << stats.expectedHits << " +- " << totalSigma;
   double pValue = 1.0;
-  if (cells > 0) pValue = boost::math::cdf(boost::math::complement(boost::math::chi_squared(cells), chi2));
+  if (cells > 0) pValue = testing::chiSquareUpperTail(chi2, cells);
   std::printf("%s: %llu beams, %llu hits (expected %.1f, %+.2f sigma), %d pixels checked, chi2/dof %.3f (p %.3f), "
               "worst %.2f sigma\n",
               name.c_str(), (unsigned long long)beams, (unsigned long long)stats.hits, stats.expectedHits, totalZ,

@@ -22,7 +22,6 @@
 
 #include <unistd.h>
 
-#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
 #include "lights/photometric_file.h"
@@ -31,6 +30,7 @@
 #include "scene/scene.h"
 #include "support/object_scenes.h"
 #include "support/device_renders.h"
+#include "support/p_values.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -122,7 +122,7 @@ void expectMatchesExact(const Scene& scene, const RenderResult& r, uint64_t beam
     chi2 += z * z;
     ++cells;
   }
-  const double p = boost::math::cdf(boost::math::complement(boost::math::chi_squared(cells), chi2));
+  const double p = testing::chiSquareUpperTail(chi2, cells);
   const double totalZ = (total - expectedTotal) / std::sqrt(variance);
   std::printf("%s: %d pixels, chi2/dof %.3f (p %.4f), worst %.2f sigma, total %+.2f sigma\n", name, cells,
               chi2 / cells, p, worst, totalZ);

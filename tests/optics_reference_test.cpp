@@ -27,9 +27,6 @@
 #include <string>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
-#include <boost/math/distributions/students_t.hpp>
-
 #include "camera/pinhole_camera.h"
 #include "backend/cpu_tracer.h"
 #include "backend/device.h"
@@ -40,6 +37,7 @@
 #include "render/renderer.h"
 #include "spectrum/glass.h"
 #include "support/object_scenes.h"
+#include "support/p_values.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -94,7 +92,7 @@ double binomialSigma(double expectedIrradiance, double irradiancePerCount, uint6
 }
 
 double chiSquarePValue(double chi2, int dof) {
-  return dof > 0 ? boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2)) : 1.0;
+  return dof > 0 ? testing::chiSquareUpperTail(chi2, dof) : 1.0;
 }
 
 // A pixel's counts over all its bins.
@@ -858,7 +856,7 @@ void expectFurnace(double rho, uint32_t bounces, bool connect, uint64_t beams, c
   for (double m : means) var += (m - mean) * (m - mean) / (kBatches - 1);
   const double sigma = std::sqrt(var / kBatches);
   const double t = (mean - expected) / sigma;
-  const double pValue = 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(kBatches - 1), std::abs(t)));
+  const double pValue = 2.0 * testing::studentTUpperTail(std::abs(t), kBatches - 1);
   std::printf("  %s: %.6g W/m^2 vs %.6g (no plate: %.6g), t = %+.2f (p = %.3f), sigma %.2f%%\n", label.c_str(), mean,
               expected, zeroth, t, pValue, 100.0 * sigma / expected);
   EXPECT_LE(std::abs(t), 5.0) << label << ": " << mean << " vs " << expected;

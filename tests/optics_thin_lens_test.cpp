@@ -19,13 +19,12 @@
 #include <string>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
-
 #include "camera/thin_lens_camera.h"
 #include "reference/exact_solution.h"
 #include "render/renderer.h"
 #include "support/object_scenes.h"
 #include "support/device_renders.h"
+#include "support/p_values.h"
 #include "support/render_comparison.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -207,7 +206,7 @@ TEST(OpticsThinLens, OutOfFocusPointFillsItsBlurDiskAsTheClosedFormSays) {
         ++inside;
       }
     }
-  const double pValue = boost::math::cdf(boost::math::complement(boost::math::chi_squared(inside), chi2));
+  const double pValue = testing::chiSquareUpperTail(chi2, inside);
   std::printf("  blur radius %.4f mm: %d pixels inside, chi2 %.1f (p = %.3f), worst %.2f sigma\n", blur * 1e3, inside,
               chi2, pValue, worst);
   EXPECT_GE(inside, 200);

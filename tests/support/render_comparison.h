@@ -10,10 +10,9 @@
 #include <string>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
-
 #include "film/spectral_histogram.h"
 #include "compile/compile_scene.h"
+#include "support/p_values.h"
 
 namespace spectrace::testing {
 
@@ -88,7 +87,7 @@ inline RenderComparison compareRenders(const PixelEstimates& a, const PixelEstim
   result.totalZ = (totalA - totalB) / std::sqrt(a.totalVariance + b.totalVariance);
   EXPECT_LT(std::abs(result.totalZ), 5.0) << name << ": total " << totalA << " vs " << totalB;
   if (result.cells > 0)
-    result.pValue = boost::math::cdf(boost::math::complement(boost::math::chi_squared(result.cells), result.chi2));
+    result.pValue = chiSquareUpperTail(result.chi2, result.cells);
   std::printf("%s: %llu vs %llu beams counted; %d pixels compared, chi2/dof %.3f (p %.4f), worst %.2f sigma, "
               "total %+.2f sigma\n",
               name.c_str(), (unsigned long long)a.countedBeams, (unsigned long long)b.countedBeams, result.cells,

@@ -1,11 +1,11 @@
 #pragma once
 // Statistics for Monte Carlo tests: Pearson chi-square with the p-value from
-// Boost.Math, pooling of sparse cells as in pbrt-v4's sampler tests.
+// Boost.Math (support/p_values.cpp), pooling of sparse cells as in pbrt-v4's sampler tests.
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
+#include "support/p_values.h"
 
 namespace spectrace::testing {
 
@@ -51,8 +51,7 @@ inline ChiSquareResult chiSquareTest(std::span<const uint64_t> observed, std::sp
     result.pValue = 1.0;
     return result;
   }
-  boost::math::chi_squared dist(result.degreesOfFreedom);
-  result.pValue = boost::math::cdf(boost::math::complement(dist, result.statistic));
+  result.pValue = chiSquareUpperTail(result.statistic, result.degreesOfFreedom);
   return result;
 }
 
