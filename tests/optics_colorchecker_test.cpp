@@ -1,6 +1,6 @@
 // The 24 ColorChecker patches (Ohta 1997, data/cie/colorchecker24_ohta.csv)
 // as diffuse rects under a D65 rect light, seen through a pinhole with
-// camera connections (the default). Each patch's image has the expected
+// camera connections of light paths. Each patch's image has the expected
 // chromaticity
 //   xy of  ∫ ρ(λ) S(λ) cmf(λ) dλ  over the scene's spectrum range,
 // ρ the patch's reflectance as the scene holds it (SurfaceMaterial::
@@ -29,14 +29,20 @@
 //
 // The beam budget: one wavelength drawn from D65 gives each connection a
 // chromaticity scatter of 0.15-0.41 (x or y, per patch, computed from the
-// tables); the four stratified wavelengths a beam carries (the default)
-// bring the worst patch's standard error to 1.37e-4 at 224 million beams
-// and 1.75e-4 at 150 million (about half of which connect inside a patch):
-// 5 sigma 8.8e-4, under the tolerance. That is the CPU reference's part;
+// tables); with the four stratified wavelengths a beam carries (the
+// default), light paths alone bring the worst patch's standard error to
+// 3.1e-5 at 150 million beams, so 1.1e-4 at the 12 million traced here:
+// 5 sigma 5.4e-4, under the tolerance. That is the CPU reference's part;
 // lavapipe traces the first 4 million beams, which must give the CPU's film
 // bit for bit. At a smaller test scale (tests/support/test_scale.h) both
 // counts shrink and the tolerance grows as 1 / sqrt(beams), so it stays
 // 5 standard errors above the noise.
+//
+// Light paths alone, because the default estimator, light and camera paths
+// joined by MIS, measured a worst standard error of 1.75e-4 at 150 million
+// beams, 5.7 times that of light paths at about the same cost a beam: it
+// needs 30 times the beams for the tolerance. It is checked too, to 5 sigma
+// of its own noise, on 2 million beams that both devices trace alike.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,6 +57,7 @@
 #include "colour/colour.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "support/device_renders.h"
 #include "support/test_scale.h"
 
 namespace spectrace {
@@ -236,40 +243,41 @@ ChartResult checkChart(const Scene& scene, const RenderImage& image, const char*
   return chart;
 }
 
-RenderOptions optionsFor(DeviceChoice device, uint64_t beams) {
-  RenderOptions options;
-  options.beams = beams;
-  options.seed = 11;
-  options.device = device;
-  return options;
+constexpr uint64_t kSeed = 11;
+
+// The scene on lavapipe and on the CPU reference with the same beams, whose
+// films must be equal bit for bit; the CPU's render, with per-beam colour
+// sums, not colour from the bins (the reflectances vary).
+RenderResult renderOnBoth(const Scene& scene, uint64_t beams, bool cameraPaths) {
+  CompileOptions plan;
+  plan.cameraPaths = cameraPaths;
+  RenderResult cpu = testing::renderOnBothDevices(scene, beams, kSeed, plan);
+  EXPECT_TRUE(cpu.plan.film.exactColour);
+  EXPECT_FALSE(cpu.plan.film.colourFromBins);
+  return cpu;
 }
 
 // Lavapipe traces the first kGpuBeams beams; the CPU reference the same
 // beams, which must give the same film bit for bit, and then goes on from
 // that film to kCpuBeams. So everything the CPU's render shows about those
 // beams holds for lavapipe's. The tolerance is checked on the CPU's full
-// render, and lavapipe's own image to 5 sigma of its noise.
+// render, and the first beams' image (both devices') to 5 sigma of its noise.
 const testing::ScaledBeams kGpuBeams = testing::scaledBeams(4'000'000, 400'000);
-const testing::ScaledBeams kCpuBeams = testing::scaledBeams(150'000'000);
+const testing::ScaledBeams kCpuBeams = testing::scaledBeams(12'000'000, 800'000);
+const testing::ScaledBeams kBothEstimatorsBeams = testing::scaledBeams(2'000'000, 200'000);
 const double kTolerance = kCpuBeams.tolerance(1e-3);
 
 TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) {
   const Scene scene = colorCheckerScene();
-  const RenderResult gpu = render(scene, optionsFor(DeviceChoice::Gpu, kGpuBeams));
-  ASSERT_EQ(gpu.deviceKind, DeviceKind::Vulkan);
-  // Per-beam colour sums, not colour from the bins (the reflectances vary).
-  ASSERT_TRUE(gpu.plan.film.exactColour);
-  ASSERT_FALSE(gpu.plan.film.colourFromBins);
-  std::printf("%s: %llu beams in %.2f s\n", gpu.deviceName.c_str(), (unsigned long long)kGpuBeams.beams, gpu.wallSeconds);
+  const RenderResult prefix = renderOnBoth(scene, kGpuBeams, false);
+  ASSERT_EQ(prefix.plan.device.constants.estimators, device::kEstimatorLightPaths);
+  checkChart(scene, prefix.image, "the first beams, on both devices, to 5 sigma of their own noise", 0.0);
 
-  const RenderResult prefix = render(scene, optionsFor(DeviceChoice::Cpu, kGpuBeams));
-  ASSERT_EQ(prefix.deviceKind, DeviceKind::Cpu);
-  EXPECT_TRUE(gpu.histogram.counts() == prefix.histogram.counts()) << "lavapipe and the CPU reference binned the same beams differently";
-  EXPECT_TRUE(gpu.histogram.colourSums() == prefix.histogram.colourSums()) << "exact colour sums differ";
-  EXPECT_TRUE(gpu.histogram.squaredWeightSums() == prefix.histogram.squaredWeightSums()) << "squared weights differ";
-  checkChart(scene, gpu.image, "lavapipe, to 5 sigma of its own noise", 0.0);
-
-  RenderOptions options = optionsFor(DeviceChoice::Cpu, kCpuBeams);
+  RenderOptions options;
+  options.beams = kCpuBeams;
+  options.seed = kSeed;
+  options.device = DeviceChoice::Cpu;
+  options.plan.cameraPaths = false;
   options.loop.resumeFilm = &prefix.histogram;
   options.loop.resumedBeams = kGpuBeams;
   const RenderResult cpu = render(scene, options);
@@ -279,6 +287,11 @@ TEST(OpticsColorChecker, PatchChromaticityUnderD65OnLavapipeAndTheCpuReference) 
   const ChartResult chart = checkChart(scene, cpu.image, "CPU reference", kTolerance);
   RecordProperty("worst_error", std::to_string(chart.worstError));
   RecordProperty("worst_standard_error", std::to_string(chart.worstSigma));
+
+  // The default estimator, light and camera paths.
+  const RenderResult both = renderOnBoth(scene, kBothEstimatorsBeams, true);
+  ASSERT_EQ(both.plan.device.constants.estimators, device::kEstimatorLightPaths | device::kEstimatorCameraPaths);
+  checkChart(scene, both.image, "light and camera paths, on both devices, to 5 sigma of their own noise", 0.0);
 }
 
 }  // namespace

@@ -13,20 +13,20 @@
 
 namespace spectrace::testing {
 
-// One device of each kind per test program, opened at first use: a device
-// keeps its compiled pipelines, so a test's second render of the same
-// pipeline skips lavapipe's compile, seconds a time.
+// One device of each kind (Gpu, else Cpu) per test program, opened at first
+// use: a device keeps its compiled pipelines, so a test's second render of
+// the same pipeline skips lavapipe's compile, seconds a time.
 inline const Device& sharedDevice(DeviceChoice device) {
   if (device == DeviceChoice::Gpu) {
     static const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
     return *gpu;
   }
-  static const std::unique_ptr<Device> cpu = Device::open(device);
+  static const std::unique_ptr<Device> cpu = Device::open(DeviceChoice::Cpu);
   return *cpu;
 }
 
-// On the shared device of its kind, without checkpoints; the general pipeline (nothing specialised to the
-// scene) when asked. Prints the device, the time and the counted beams.
+// On the shared device of its kind, without checkpoints; the general
+// pipeline (nothing specialised to the scene) when asked. Prints the device, the time and the counted beams.
 inline RenderResult renderOn(DeviceChoice device, const Scene& scene, uint64_t beams, uint64_t seed,
                              const CompileOptions& plan = {}, bool generalPipeline = false) {
   RenderOptions options;

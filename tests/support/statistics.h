@@ -1,6 +1,7 @@
 #pragma once
 // Statistics for Monte Carlo tests: Pearson chi-square with the p-value from
-// Boost.Math (support/p_values.cpp), pooling of sparse cells as in pbrt-v4's sampler tests.
+// Boost.Math (support/p_values.cpp), pooling of sparse cells as in pbrt-v4's
+// sampler tests.
 #include <cstdint>
 #include <span>
 #include <vector>
