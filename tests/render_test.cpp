@@ -7,7 +7,7 @@
 
 #include "camera/pinhole_camera.h"
 #include "support/cpu_trace.h"
-#include "backend/device.h"
+#include "support/device_renders.h"
 #include "render/renderer.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
@@ -109,29 +109,28 @@ TEST(Render, BitIdenticalWhateverTheBatchWorkgroupAndThreads) {
   // to the total at any test scale (700,001, 999,999, 1,234,567 at full).
   const uint64_t n = testing::scaledBeams(3'000'000, 300'000);
   const auto part = [n](uint64_t atFullScale) { return atFullScale * n / 3'000'000; };
-  // One device of each kind for every render: a device keeps its compiled
-  // pipelines, and each render clears the film it takes from the device's
-  // buffers.
-  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
-  const std::unique_ptr<Device> cpu = Device::open(DeviceChoice::Cpu);
-  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
-  const RenderResult gpuReference = renderWith(*gpu, n, n);
+  // The shared devices: each render clears the film it takes from the
+  // device's buffers.
+  const Device& gpu = testing::sharedDevice(DeviceChoice::Gpu);
+  const Device& cpu = testing::sharedDevice(DeviceChoice::Cpu);
+  ASSERT_EQ(gpu.capabilities().kind, DeviceKind::Vulkan);
+  const RenderResult gpuReference = renderWith(gpu, n, n);
   const auto& reference = gpuReference.histogram;
   ASSERT_TRUE(reference.hasExactColour());
   const auto expectSameRender = [&](const RenderResult& result, const char* what) {
     expectSameImage(result.image, gpuReference.image, what);
     expectSameHistogram(result.histogram, reference, what);
   };
-  expectSameRender(renderWith(*gpu, n, part(700'001)), "odd batches");
-  expectSameRender(renderWith(*gpu, n, 0, 256), "workgroup 256");
-  expectSameRender(renderWith(*gpu, n, 0, 32), "workgroup 32");
-  const RenderResult cpuOneThread = renderWith(*cpu, n, 0, 64, 1);
+  expectSameRender(renderWith(gpu, n, part(700'001)), "odd batches");
+  expectSameRender(renderWith(gpu, n, 0, 256), "workgroup 256");
+  expectSameRender(renderWith(gpu, n, 0, 32), "workgroup 32");
+  const RenderResult cpuOneThread = renderWith(cpu, n, 0, 64, 1);
   expectSameHistogram(cpuOneThread.histogram, reference, "cpu, 1 thread");
-  expectSameImage(cpuOneThread.image, renderWith(*cpu, n, part(999'999), 64, 2).image, "cpu image, 1 vs 2 threads");
-  expectSameHistogram(renderWith(*cpu, n, part(1'234'567), 64, 2).histogram, reference, "cpu, 2 threads");
+  expectSameImage(cpuOneThread.image, renderWith(cpu, n, part(999'999), 64, 2).image, "cpu image, 1 vs 2 threads");
+  expectSameHistogram(renderWith(cpu, n, part(1'234'567), 64, 2).histogram, reference, "cpu, 2 threads");
   // Two renders over disjoint beam ranges merge into the whole.
-  auto first = renderWith(*gpu, n / 3, 0);
-  first.histogram.merge(renderWith(*cpu, n - n / 3, 0, 64, 0, n / 3).histogram);
+  auto first = renderWith(gpu, n / 3, 0);
+  first.histogram.merge(renderWith(cpu, n - n / 3, 0, 64, 0, n / 3).histogram);
   expectSameHistogram(first.histogram, reference, "merged halves");
 }
 
@@ -178,20 +177,20 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
       default: return 0;                      // light types, uniform tables: two lights, two SPDs
     }
   };
-  // One device for every render: it keeps its compiled pipelines by their
-  // code and constants, so the general pipeline, the same for every scene
-  // here, compiles once for each colour mode.
-  const std::unique_ptr<Device> device = Device::open(DeviceChoice::Gpu);
-  ASSERT_EQ(device->capabilities().kind, DeviceKind::Vulkan);
+  // The shared device keeps its compiled pipelines by their code and
+  // constants, so the general pipeline, the same for every scene here,
+  // compiles once for each colour mode.
+  const Device& device = testing::sharedDevice(DeviceChoice::Gpu);
+  ASSERT_EQ(device.capabilities().kind, DeviceKind::Vulkan);
   for (bool exactColour : {true, false}) {
     for (size_t s = 0; s < scenes.size(); ++s) {
       const Scene& scene = scenes[s];
       RenderOptions options;
       options.beams = 250'000;
       options.plan.exactColour = exactColour;
-      const RenderResult specialised = render(scene, options, *device);
+      const RenderResult specialised = render(scene, options, device);
       options.tracer.specialisedFeatures = kSpecialiseNone;
-      const RenderResult general = render(scene, options, *device);
+      const RenderResult general = render(scene, options, device);
       EXPECT_GT(general.histogram.countedBeams, 1000u);
       expectSameHistogram(specialised.histogram, general.histogram, "specialised vs general");
       expectSameImage(specialised.image, general.image, "specialised vs general");
@@ -203,7 +202,7 @@ TEST(Render, SpecialisedPipelineMatchesGeneralBitForBit) {
         if (featureAloneScene(feature) != s) continue;
         TracerOptions alone;
         alone.specialisedFeatures = feature;
-        const std::unique_ptr<Tracer> tracer = device->makeTracer(general.plan, alone);
+        const std::unique_ptr<Tracer> tracer = device.makeTracer(general.plan, alone);
         tracer->trace(0, options.beams);
         expectSameHistogram(tracer->download(), general.histogram,
                             ("feature " + std::to_string(feature) + " alone vs general").c_str());
@@ -230,10 +229,9 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
   const std::vector<Case> cases = {{"532 nm line", makeLineSpd(532.0), 1},
                                    {"F11 (380-780 nm)", *cieIlluminant("F11"), 82},
                                    {"Gaussian 589 nm", makeLineSpd(589.0, 2.0), 3}};
-  // One device of each kind for every render: a device keeps its compiled pipelines.
-  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
-  const std::unique_ptr<Device> cpu = Device::open(DeviceChoice::Cpu);
-  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
+  const Device& gpu = testing::sharedDevice(DeviceChoice::Gpu);
+  const Device& cpu = testing::sharedDevice(DeviceChoice::Cpu);
+  ASSERT_EQ(gpu.capabilities().kind, DeviceKind::Vulkan);
   for (const auto& c : cases) {
     Scene scene = bareSensorScene(0.02, 0.02, 8, 8, 94);
     Light disk = surfaceLight(LightType::Disk, {0.0, 0.0, 0.01}, {0, 0, -1}, 1.0, c.spd);
@@ -241,7 +239,7 @@ TEST(Render, TrimmedSpectrumMatchesFullSpectrumBitForBit) {
     scene.lights = {disk};
     const CompiledScene trimmed = compileScene(scene, 1);
     EXPECT_LE(trimmed.film.storedBins, c.maxStoredBins) << c.name;
-    for (const Device* device : {gpu.get(), cpu.get()}) {
+    for (const Device* device : {&gpu, &cpu}) {
       RenderOptions options;
       options.beams = 1'000'000;
       const RenderResult a = render(scene, options, *device);
@@ -292,9 +290,8 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     s.lights = {disk};
     cases.push_back({"pinhole: disk straddling the aperture plane", s, false});
   }
-  // One device for every render: it keeps its compiled pipelines.
-  const std::unique_ptr<Device> gpu = Device::open(DeviceChoice::Gpu);
-  ASSERT_EQ(gpu->capabilities().kind, DeviceKind::Vulkan);
+  const Device& gpu = testing::sharedDevice(DeviceChoice::Gpu);
+  ASSERT_EQ(gpu.capabilities().kind, DeviceKind::Vulkan);
   for (const auto& c : cases) {
     const CompiledScene plan = compileScene(c.scene, 1);
     std::printf("%s: %llu of %llu pixels stored\n", c.name, (unsigned long long)plan.film.storedPixelCount(),
@@ -306,9 +303,9 @@ TEST(Render, TrimmedSensorMatchesFullSensorBitForBit) {
     // moves them (the same expectation, other bits; the closed forms of
     // OpticsReference.EmitterSquareMatchesItsClosedForm hold it).
     options.plan.cameraPaths = false;
-    const RenderResult a = render(c.scene, options, *gpu);
+    const RenderResult a = render(c.scene, options, gpu);
     options.plan.trimPixels = false;
-    const RenderResult b = render(c.scene, options, *gpu);
+    const RenderResult b = render(c.scene, options, gpu);
     EXPECT_EQ(b.plan.film.storedPixelCount(), b.plan.film.pixelCount());
     EXPECT_GT(a.histogram.countedBeams, 10'000u) << c.name;
     expectSameHistogram(a.histogram, b.histogram, c.name);
