@@ -88,7 +88,8 @@ SPECTRACE_CONSTANT uint kLightDisk = 2;
 SPECTRACE_CONSTANT uint kLightRect = 3;
 SPECTRACE_CONSTANT uint kLightLaser = 4;
 SPECTRACE_CONSTANT uint kLightPhotometric = 5;
-SPECTRACE_CONSTANT uint kLightTypeCount = 6;
+SPECTRACE_CONSTANT uint kLightObject = 6;  // an object's "emission": its surface, Lambertian
+SPECTRACE_CONSTANT uint kLightTypeCount = 7;
 SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit per type
 
 // Camera models (what stands before the sensor): one kernel unit per model
@@ -179,6 +180,9 @@ SPECTRACE_CONSTANT uint kRngBlockBounce = 3;
 // rejection inside its patch: try t draws block kRngBlockPhotometricTry + t
 // (C u, gamma u, acceptance word, spare), far above any bounce's blocks.
 SPECTRACE_CONSTANT uint kRngBlockPhotometricTry = 0x40000000u;
+// An emitting object's beam (lights/object.h) takes its point on the chosen
+// primitive from one more block (point u, point v, side, spare).
+SPECTRACE_CONSTANT uint kRngBlockEmitterPoint = 0x60000000u;
 // Camera paths (camera_path.h), keyed on (seed, path index, block) like
 // beams, in blocks far above any bounce's: the start (pixel u, v, aperture
 // u, v), the wavelength (interval (64 bit), position, rounding), the light
@@ -271,6 +275,14 @@ SPECTRACE_CONSTANT uint kBvhMaxIndex = 1u << (32u - kBvhCountBits);
 // (threshold low, high, alias, 0). Patch k is C interval k / (nG - 1) and
 // gamma interval k % (nG - 1).
 SPECTRACE_CONSTANT uint kPhotometricHeaderWords = 4u;
+
+// An emitting object's scene data (host/lights/object_light.cpp): a header
+// (primitive count, alias bits, two-sided, 0), the alias columns over its
+// primitives by area, four words each (threshold low, high, alias, 0), then
+// its primitives in the camera frame, kPrimitiveWords each (Primitive's
+// layout), the same float values the BVH's copies hold.
+SPECTRACE_CONSTANT uint kObjectEmitterHeaderWords = 4u;
+SPECTRACE_CONSTANT uint kPrimitiveWords = 12u;
 
 // Material kinds (spectrace::MaterialType, at the end of this file, takes
 // its values from these). One kernel unit per kind in
@@ -578,7 +590,7 @@ static_assert(sizeof(SpectralInterval) == 24);
 static_assert(sizeof(TraceConstants) == 176);
 static_assert(offsetof(TraceConstants, cameraParams) == 140);
 static_assert(offsetof(TraceConstants, cameraDataFirst) == 156);
-static_assert(sizeof(Primitive) == 48);
+static_assert(sizeof(Primitive) == 48 && sizeof(Primitive) == 4 * kPrimitiveWords);
 static_assert(sizeof(BvhNode) == 128);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TraceStats) == 8);
@@ -608,8 +620,9 @@ enum class LightType : uint32_t {
   Rect = device::kLightRect,
   Laser = device::kLightLaser,
   Photometric = device::kLightPhotometric,
+  Object = device::kLightObject,
 };
-static_assert(uint32_t(LightType::Photometric) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
+static_assert(uint32_t(LightType::Object) + 1 == device::kLightTypeCount, "light types are numbered 0.. without gaps");
 // The material kinds on the host, numbered as the kernel numbers them.
 enum class MaterialType : uint32_t {
   Absorber = device::kMaterialAbsorber,

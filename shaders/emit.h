@@ -11,6 +11,13 @@
 #include "lights/rect.h"
 #include "lights/laser.h"
 #include "lights/photometric.h"
+// An emitting object draws points on its primitives (their kernel units).
+#include "shapes/shape_shared.h"
+#include "shapes/triangle.h"
+#include "shapes/rect.h"
+#include "shapes/disk.h"
+#include "shapes/sphere.h"
+#include "lights/object.h"
 
 // The entry an alias table of 2^bits columns from column `first` draws for
 // the 64-bit uniform u (host/spectrum/alias_table.h): O(1), one or two
@@ -67,6 +74,8 @@ FN float emitLightBeam(LightRecord light, uvec4 geometry, uint64_t beamIndex, OU
     ratio = emitLaserBeam(light, aimed, ou, ov, origin, direction);
   } else if (SPECTRACE_LIGHT_ENABLED(kLightPhotometric) && light.type == kLightPhotometric) {
     ratio = emitPhotometricBeam(light, geometry, beamIndex, direction);
+  } else if (SPECTRACE_LIGHT_ENABLED(kLightObject) && light.type == kLightObject) {
+    ratio = emitObjectBeam(light, geometry, beamIndex, origin, direction);
   }
   return ratio;
 }

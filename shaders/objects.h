@@ -1,7 +1,7 @@
 // Scene objects in the shared kernel: dispatch to the primitive's unit
 // (shapes/<primitive>.h), the BVH walk with a fixed stack, the camera's
-// body, and the offset that keeps a scattered beam off the surface it
-// leaves. Float only, with PRECISE, so the CPU reference and the shader
+// body (the offset that keeps a scattered beam off the surface it leaves
+// is shapes/shape_shared.h's). Float only, with PRECISE, so the CPU reference and the shader
 // find the same surface at the same point.
 #ifndef SPECTRACE_OBJECTS_H
 #define SPECTRACE_OBJECTS_H
@@ -176,24 +176,6 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
     count = stackEntry[depth] & ((1u << kBvhCountBits) - 1u);
   }
   return found;
-}
-
-// Wächter and Binder, "A Fast and Robust Method for Avoiding
-// Self-Intersection" (Ray Tracing Gems, ch. 6): the point moved off the
-// surface along n by a fixed number of ulps (a fixed distance near the
-// origin, where ulps vanish), so a ray from it cannot meet the surface it
-// leaves through rounding. Near the origin the distance is 2^-20 m, what
-// 256 ulps are at the threshold 1/32 m (their 2^-16 suits scenes of other
-// units; in metres it shifted refracted beams by 15 um), and still a
-// thousand times the rounding of a point there.
-FN vec3 offsetOffSurface(vec3 point, vec3 n) {
-  ivec3 ulps = ivec3(int(256.0f * n.x), int(256.0f * n.y), int(256.0f * n.z));
-  vec3 moved = vec3(intBitsToFloat(floatBitsToInt(point.x) + (point.x < 0.0f ? -ulps.x : ulps.x)),
-                    intBitsToFloat(floatBitsToInt(point.y) + (point.y < 0.0f ? -ulps.y : ulps.y)),
-                    intBitsToFloat(floatBitsToInt(point.z) + (point.z < 0.0f ? -ulps.z : ulps.z)));
-  PRECISE vec3 nudged = point + n * (1.0f / 1048576.0f);
-  return vec3(abs(point.x) < 1.0f / 32.0f ? nudged.x : moved.x, abs(point.y) < 1.0f / 32.0f ? nudged.y : moved.y,
-              abs(point.z) < 1.0f / 32.0f ? nudged.z : moved.z);
 }
 
 // The camera's body, in the camera frame: the box |x| <= half width,

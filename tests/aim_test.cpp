@@ -55,7 +55,8 @@ Light lightOfType(LightType type) {
       laser.radiusM = 0.02;
       return laser;
     }
-    case LightType::Photometric: break;  // never aimed (lights/photometric_light.cpp)
+    case LightType::Photometric:  // never aimed (lights/photometric_light.cpp)
+    case LightType::Object: break;  // never aimed (lights/object_light.cpp)
   }
   return {};
 }

@@ -98,39 +98,6 @@ Light photometricLight(const PhotometricTable& table, glm::dvec3 position, glm::
   return light;
 }
 
-// The render's pixels against the exact image: z = (E - e) / sqrt(v e)
-// with the render's variance model (testing::pixelEstimates), where the
-// pixel expects at least 20 counts; 5 sigma each, a chi-square p-value
-// above 1e-3, and the total within 5 sigma.
-void expectMatchesExact(const Scene& scene, const RenderResult& r, uint64_t beams, const char* name) {
-  const auto exact = exactSolution(scene);
-  ASSERT_TRUE(exact.has_value()) << name;
-  const testing::PixelEstimates est = testing::pixelEstimates(r.histogram, r.plan, beams);
-  double chi2 = 0.0, total = 0.0, expectedTotal = 0.0, variance = 0.0, worst = 0.0;
-  int cells = 0, failures = 0;
-  for (size_t p = 0; p < est.irradiance.size(); ++p) {
-    const double e = exact->irradiance[p], v = est.variancePerMean[p];
-    total += est.irradiance[p];
-    expectedTotal += e;
-    variance += v * e;
-    if (e / v < 20.0) continue;
-    const double z = (est.irradiance[p] - e) / std::sqrt(v * e);
-    if (std::abs(z) >= 5.0 && ++failures <= 10)
-      ADD_FAILURE() << name << ": pixel " << p << ": " << est.irradiance[p] << " vs exact " << e << ", " << z
-                    << " sigma";
-    worst = std::max(worst, std::abs(z));
-    chi2 += z * z;
-    ++cells;
-  }
-  const double p = testing::chiSquareUpperTail(chi2, cells);
-  const double totalZ = (total - expectedTotal) / std::sqrt(variance);
-  std::printf("%s: %d pixels, chi2/dof %.3f (p %.4f), worst %.2f sigma, total %+.2f sigma\n", name, cells,
-              chi2 / cells, p, worst, totalZ);
-  EXPECT_GT(cells, 300) << name;
-  EXPECT_GT(p, 1e-3) << name;
-  EXPECT_LT(std::abs(totalZ), 5.0) << name;
-}
-
 // A 0.6 m square sensor of 24 x 24 pixels, the luminaire 0.25 m above.
 Scene sensorUnder(const Light& light) {
   Scene scene = testing::bareSensorScene(0.6, 0.6, 24, 24, 16);
@@ -143,13 +110,13 @@ const uint64_t kBeams = testing::scaledBeams(4'000'000, 200'000);
 TEST(OpticsPhotometric, LambertianTableGivesItsIlluminanceOnBothDevices) {
   const PhotometricTable table = parseIes(iesText({0.0}, steps(0, 90, 10), lambertian), "lambertian.ies");
   const Scene scene = sensorUnder(photometricLight(table, {0.0, 0.0, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 1), kBeams, "Lambertian");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 1), kBeams, "Lambertian");
 }
 
 TEST(OpticsPhotometric, BatwingTableGivesItsIlluminanceOnBothDevices) {
   const PhotometricTable table = parseIes(iesText({0.0}, steps(0, 90, 5), batwing), "batwing.ies");
   const Scene scene = sensorUnder(photometricLight(table, {0.02, -0.01, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 2), kBeams, "batwing");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 2), kBeams, "batwing");
 }
 
 TEST(OpticsPhotometric, AsymmetricTableFollowsItsC0AxisOnBothDevices) {
@@ -158,7 +125,7 @@ TEST(OpticsPhotometric, AsymmetricTableFollowsItsC0AxisOnBothDevices) {
   // Tilted, with C = 0 neither along a world axis nor the default.
   const Scene scene =
       sensorUnder(photometricLight(table, {-0.03, 0.02, 0.25}, {0.15, -0.1, -1.0}, {0.3, 1.0, 0.0}));
-  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 3), kBeams, "asymmetric 0-360");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 3), kBeams, "asymmetric 0-360");
 }
 
 TEST(OpticsPhotometric, EulumdatFileGivesTheSameIlluminance) {
@@ -167,7 +134,7 @@ TEST(OpticsPhotometric, EulumdatFileGivesTheSameIlluminance) {
   const PhotometricTable ies = parseIes(iesText({0.0}, gamma, batwing), "batwing.ies");
   EXPECT_NEAR(ldt.tableLumens(), ies.tableLumens(), 1e-6 * ies.tableLumens());
   const Scene scene = sensorUnder(photometricLight(ldt, {0.0, 0.0, 0.25}, {0, 0, -1}, {1, 0, 0}));
-  expectMatchesExact(scene, testing::renderOnBothDevices(scene, kBeams, 4), kBeams, "batwing (EULUMDAT)");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 4), kBeams, "batwing (EULUMDAT)");
 }
 
 // The scene file's form: the file beside the scene, nadir straight down by

@@ -120,7 +120,7 @@ void compileLights(const Scene& scene, const CompileOptions& options, CompiledSc
       record.axis = toFloat(local.axis);
       record.tangent = toFloat(local.tangent);
       record.bitangent = toFloat(local.bitangent);
-      unit.pack(light, record, compiled.device.data);
+      unit.pack(light, frame, record, compiled.device.data);
       if (aim) summary.largestWeight = unit.aim(light, local, target, record);
       summary.aimed = record.aimed != 0;
       device.lights.push_back(record);

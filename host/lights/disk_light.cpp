@@ -22,7 +22,9 @@ void parse(const jf::Source& c, const jf::Json& v, const std::string& ptr, Light
 
 void validate(const Light& light, const LightFieldCheck& check) { checkLength(check, "radius_m", light.radiusM); }
 
-void pack(const Light& light, device::LightRecord& record, SceneData&) { record.param0 = float(light.radiusM); }
+void pack(const Light& light, const CameraFrame&, device::LightRecord& record, SceneData&) {
+  record.param0 = float(light.radiusM);
+}
 
 std::string unreachableBecause(const Light& light, const LightFrame& frame, const Camera& camera) {
   // The rim reaches highest where it tilts towards +z.

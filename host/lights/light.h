@@ -4,12 +4,15 @@
 // (lights/light_type.h).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <vector>
 #include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "camera/camera_frame.h"
 #include "device_shared.h"
 #include "lights/photometric_file.h"
 #include "spectrum/spd.h"
@@ -21,6 +24,16 @@ inline constexpr uint32_t kLightTypeCount = device::kLightTypeCount;
 
 // "point", "spot", ... (the unit's name).
 const char* lightTypeName(LightType type);
+
+// An object's surface that emits (an object's "emission"): the object's
+// shape unit places its primitives, so this module needs no shape of its
+// own (shapes sit above lights in the module graph).
+struct EmittingSurface {
+  // The object's primitives in a camera frame, as the BVH gets them.
+  std::function<std::vector<device::Primitive>(const CameraFrame&)> place;
+  glm::dvec3 boundsLo{0.0}, boundsHi{0.0};  // world axis-aligned box holding the surface
+  bool twoSided = false;                     // emits from both faces (else along its normals)
+};
 
 struct Light {
   LightType type = LightType::Point;
@@ -48,6 +61,9 @@ struct Light {
   // to `direction` (nadir); uAxis holds the same.
   std::shared_ptr<const PhotometricTable> photometry;
   std::filesystem::path photometryFile;
+  // object: the emitting surface (its label is the object's
+  // "/objects/<i>/emission"; position is its box's centre).
+  std::shared_ptr<const EmittingSurface> surface;
 };
 
 }  // namespace spectrace

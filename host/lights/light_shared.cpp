@@ -47,6 +47,15 @@ void checkLength(const LightFieldCheck& check, const std::string& key, double va
                                 check.got(key, value), extra));
 }
 
+uint32_t appendAliasColumns(const AliasTable& table, SceneData& data) {
+  const auto first = uint32_t(data.words().size());
+  for (const device::AliasColumn& column : table.columns) {
+    const uint32_t words[] = {uint32_t(column.threshold), uint32_t(column.threshold >> 32), column.alias, 0u};
+    data.append(std::span<const uint32_t>(words));
+  }
+  return first;
+}
+
 std::string behindPlaneBecause(double highestZ, const Camera& camera) {
   if (!(highestZ > camera.model->frontZ())) return fmt::format("it lies behind {}", camera.model->frontName());
   return "";

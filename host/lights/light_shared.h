@@ -27,6 +27,7 @@
 #include <glm/vec3.hpp>
 
 #include "lights/light_type.h"
+#include "spectrum/alias_table.h"
 
 namespace spectrace {
 
@@ -47,6 +48,11 @@ float floatAtLeast(double x);
 // has one, its direction key (a unit vector) into `light`.
 void parsePlacement(const LightTypeUnit& unit, const json_fields::Source& c, const json_fields::Json& v,
                     const std::string& ptr, Light& light);
+// Appends an alias table's columns to the scene data, four words each
+// (threshold low, high, alias, 0), as the kernel's sceneAliasLookup reads
+// them; returns the offset of the first.
+uint32_t appendAliasColumns(const AliasTable& table, SceneData& data);
+
 // "must be a length in metres, > 0 and <= 1e+12 (got ...)" unless `value` is.
 void checkLength(const LightFieldCheck& check, const std::string& key, double value, const std::string& extra = "");
 

@@ -69,15 +69,18 @@ struct LightTypeUnit {
   // Aimed beams carry varying weights, so counts need fractional units
   // (device::kWeightUnitsFractional).
   bool aimedWeightsVary;
+  // Given as an object's "emission" rather than in "lights" (never read by
+  // `parse`, not a "type" a light may name).
+  bool onObject = false;
 
   // Reads the type's keys of the light object `v` at `ptr` into `light`
   // (types only: value ranges are `validate`'s).
   void (*parse)(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr, Light& light);
   // The type's semantic checks (the common ones are validateScene's).
   void (*validate)(const Light& light, const LightFieldCheck& check);
-  // Fills the record's type parameters: param0, param1, and whatever else
+  // Fills the record's type parameters (in the camera `frame`): param0, param1, and whatever else
   // the type needs appended to the scene data (dataFirst, dataWords).
-  void (*pack)(const Light& light, device::LightRecord& record, SceneData& data);
+  void (*pack)(const Light& light, const CameraFrame& frame, device::LightRecord& record, SceneData& data);
   // Why the light can never put a beam on the sensor, or "" when it might.
   std::string (*unreachableBecause)(const Light& light, const LightFrame& frame, const Camera& camera);
   // Fills the record's aim fields when aiming helps and returns the largest

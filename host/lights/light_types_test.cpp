@@ -21,14 +21,19 @@ TEST(LightTypes, OneUnitPerTypeInDeviceOrder) {
     EXPECT_EQ(lightTypeUnitNamed(unit.name), &unit);
     EXPECT_STREQ(lightTypeName(unit.type), unit.name);
     EXPECT_TRUE(names.insert(unit.name).second) << unit.name;
-    // Every unit reads its placement keys.
-    EXPECT_NE(std::find(unit.keys.begin(), unit.keys.end(), std::string_view(unit.positionKey)), unit.keys.end());
+    // Every unit of "lights" reads its placement keys; an object's emission
+    // is placed by its object.
+    EXPECT_EQ(unit.onObject, unit.positionKey == nullptr) << unit.name;
+    if (unit.positionKey) {
+      EXPECT_NE(std::find(unit.keys.begin(), unit.keys.end(), std::string_view(unit.positionKey)), unit.keys.end());
+    }
     if (unit.directionKey) {
       EXPECT_NE(std::find(unit.keys.begin(), unit.keys.end(), std::string_view(unit.directionKey)), unit.keys.end());
     }
   }
   EXPECT_EQ(uint32_t(lightTypeUnitNamed("laser")->type), device::kLightLaser);
   EXPECT_EQ(uint32_t(lightTypeUnitNamed("point")->type), device::kLightPoint);
+  EXPECT_TRUE(lightTypeUnitNamed("object")->onObject);
   EXPECT_EQ(lightTypeUnitNamed("area"), nullptr);
   EXPECT_STREQ(lightTypeName(LightType(99)), "unknown");
 }

@@ -68,7 +68,7 @@ void validate(const Light&, const LightFieldCheck&) {}
 // turns, intensities over the table's flux; each patch's envelope bounds
 // I sin(gamma) above, with room for float rounding, and the tries follow
 // from the least acceptance among the patches that can be drawn.
-void pack(const Light& light, device::LightRecord& record, SceneData& data) {
+void pack(const Light& light, const CameraFrame&, device::LightRecord& record, SceneData& data) {
   const PhotometricTable& table = *light.photometry;
   const size_t nC = table.cDegrees.size(), nG = table.gammaDegrees.size();
   const double flux = table.tableLumens();
@@ -117,10 +117,7 @@ void pack(const Light& light, device::LightRecord& record, SceneData& data) {
   data.append(std::span<const float>(gTurns));
   data.append(std::span<const float>(intensity));
   data.append(std::span<const float>(envelope));
-  for (const device::AliasColumn& column : alias.columns) {
-    const uint32_t words[] = {uint32_t(column.threshold), uint32_t(column.threshold >> 32), column.alias, 0u};
-    data.append(std::span<const uint32_t>(words));
-  }
+  appendAliasColumns(alias, data);
   record.dataWords = uint32_t(data.words().size()) - record.dataFirst;
 }
 

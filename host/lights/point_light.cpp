@@ -15,7 +15,7 @@ void parse(const jf::Source& c, const jf::Json& v, const std::string& ptr, Light
 
 void validate(const Light&, const LightFieldCheck&) {}
 
-void pack(const Light&, device::LightRecord&, SceneData&) {}
+void pack(const Light&, const CameraFrame&, device::LightRecord&, SceneData&) {}
 
 std::string unreachableBecause(const Light&, const LightFrame& frame, const Camera& camera) {
   return behindPlaneBecause(frame.position.z + 0.0, camera);

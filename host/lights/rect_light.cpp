@@ -60,7 +60,7 @@ void validate(const Light& light, const LightFieldCheck& check) {
                                      check.got("u_axis", u)));
 }
 
-void pack(const Light& light, device::LightRecord& record, SceneData&) {
+void pack(const Light& light, const CameraFrame&, device::LightRecord& record, SceneData&) {
   record.param0 = float(light.sizeM.x);
   record.param1 = float(light.sizeM.y);
 }

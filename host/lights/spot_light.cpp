@@ -34,7 +34,7 @@ void validate(const Light& light, const LightFieldCheck& check) {
     check.fail("cone_deg", coneMessage(check.got("cone_deg", light.coneHalfAngleDeg)));
 }
 
-void pack(const Light& light, device::LightRecord& record, SceneData&) {
+void pack(const Light& light, const CameraFrame&, device::LightRecord& record, SceneData&) {
   // 1 - cos(a) = 2 sin^2(a/2): no cancellation for narrow cones.
   const double half = light.coneHalfAngleDeg * M_PI / 180.0;
   const double s = std::sin(0.5 * half);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -436,6 +437,129 @@ std::array<double, 3> binnedXyzPerWatt(const Spd& spd, const SpectrumRange& rang
 
 // ---------------------------------------------------------------- the solver
 
+// Lambert's form factor of a polygon (vertices in order) seen from the
+// point p of the sensor plane, whose normal is +z: F = |Σ β_i z·u_i| / 2π,
+// β_i the angle the edge (v_i, v_i+1) subtends at p and u_i the unit normal
+// of the plane through p and the edge. Exact for a polygon wholly above
+// the plane (nothing below p's horizon) that p sees unobstructed.
+double polygonFormFactor(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p) {
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec3 a = polygon[i] - p, b = polygon[(i + 1) % polygon.size()] - p;
+    const glm::dvec3 normal = glm::cross(a, b);
+    const double length = glm::length(normal);
+    if (!(length > 0.0)) continue;
+    sum += std::atan2(length, glm::dot(a, b)) * normal.z / length;
+  }
+  return std::abs(sum) / (2.0 * kPi);
+}
+
+// A flat emitter of rects and triangles (one plane, one facing): its
+// polygons, area and unit normal; false when the primitives are not of
+// one plane.
+bool flatEmitter(const std::vector<device::Primitive>& primitives, std::vector<std::vector<glm::dvec3>>& polygons,
+                 double& area, glm::dvec3& normal) {
+  area = 0.0;
+  for (const device::Primitive& p : primitives) {
+    const glm::dvec3 a(p.a), b(p.b), c(p.c);
+    const glm::dvec3 n = glm::cross(b, c);
+    if (p.type == device::kPrimitiveRect) {
+      polygons.push_back({a - b - c, a + b - c, a + b + c, a - b + c});
+      area += 4.0 * glm::length(n);
+    } else if (p.type == device::kPrimitiveTriangle) {
+      polygons.push_back({a, a + b, a + c});
+      area += 0.5 * glm::length(n);
+    } else {
+      return false;
+    }
+    if (polygons.size() == 1) normal = glm::normalize(n);
+    if (!(glm::dot(glm::normalize(n), normal) > 1.0 - 1e-9)) return false;
+    if (!(std::abs(glm::dot(a - polygons[0][0], normal)) <= 1e-6 * glm::length(polygons[0][0]) + 1e-9)) return false;
+  }
+  return area > 0.0;
+}
+
+// An emitting object over a bare sensor, into `e` (per pixel):
+// - a one-sided rect or disk parallel to the sensor and facing it: the
+//   configuration factor of a parallel rectangle or disk times the
+//   exitance, as for the rect and disk lights;
+// - a flat emitter of rects or triangles at any tilt (a rect standing on
+//   the sensor's plane, a flat mesh, one- or two-sided), wholly above the
+//   sensor's plane with the whole sensor before one face: Lambert's
+//   polygon form factor (polygonFormFactor) times that face's exitance;
+// - a sphere wholly above the sensor's plane, which every point of the
+//   plane sees whole, so it lights it as a point of the same flux at its
+//   centre does (E = Φ cos θ / 4π d²).
+// Its primitives are the float ones the renderer samples. False for any
+// other emitter.
+bool emittingObjectIrradiance(const Light& light, const Camera& camera, const CameraFrame& frame,
+                              const std::vector<SensorRect>& rects, int n, double power, std::vector<double>& e,
+                              std::string& kind) {
+  if (!light.surface) return false;
+  const bool twoSided = light.surface->twoSided;
+  const std::vector<device::Primitive> primitives = light.surface->place(frame);
+  if (primitives.empty()) return false;
+  const device::Primitive& p = primitives[0];
+  const glm::dvec3 a(p.a), b(p.b), c(p.c);
+  const bool single = primitives.size() == 1 && !twoSided;
+  if (single && p.type == device::kPrimitiveSphere) {
+    if (!(a.z > double(p.b.x))) return false;
+    kind = "emitting sphere over a bare sensor";
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const SensorRect& r = rects[i];
+      e[i] = power * rectangleSolidAngle(r.x1, r.x2, r.y1, r.y2, a.x, a.y, a.z) / (4.0 * kPi * r.area());
+    }
+    return true;
+  }
+  std::function<double(double, double)> f;
+  if (single && p.type == device::kPrimitiveRect && parallelToZ(glm::normalize(glm::cross(b, c)))) {
+    if (!(glm::cross(b, c).z < 0.0) || !(a.z > 0.0)) return false;
+    kind = "emitting rect over a bare sensor";
+    const Vec2 u = glm::normalize(Vec2(b.x, b.y)), v = glm::normalize(Vec2(c.x, c.y));
+    const double hw = glm::length(b), hh = glm::length(c);
+    const double scale = power / (4.0 * hw * hh);  // E = π L F, L = Φ / (π A)
+    f = [=](double x, double y) {
+      const Vec2 q = Vec2(a.x, a.y) - Vec2(x, y);
+      const double cu = glm::dot(q, u), cv = glm::dot(q, v);
+      return scale * parallelRectViewFactor(cu - hw, cu + hw, cv - hh, cv + hh, a.z);
+    };
+  } else if (single && p.type == device::kPrimitiveDisk) {
+    if (!parallelToZ(b) || !(b.z < 0.0) || !(a.z > 0.0)) return false;
+    kind = "emitting disk over a bare sensor";
+    const double radius = std::sqrt(double(p.c.x));
+    const double scale = power / (kPi * radius * radius);
+    f = [=](double x, double y) { return scale * parallelDiskViewFactor(a.z, radius, std::hypot(x - a.x, y - a.y)); };
+  } else {
+    std::vector<std::vector<glm::dvec3>> polygons;
+    double area = 0.0;
+    glm::dvec3 normal{0.0};
+    if (!flatEmitter(primitives, polygons, area, normal)) return false;
+    for (const auto& polygon : polygons)
+      for (const glm::dvec3& v : polygon)
+        if (!(v.z > 0.0)) return false;
+    // The whole sensor before one face (the emitting one, for one side).
+    const double hw = 0.5 * camera.sensorWidthM, hh = 0.5 * camera.sensorHeightM;
+    int side = 0;
+    for (double sx : {-hw, hw})
+      for (double sy : {-hh, hh}) {
+        const double d = glm::dot(glm::dvec3(sx, sy, 0.0) - polygons[0][0], normal);
+        const int s = d > 0.0 ? 1 : d < 0.0 ? -1 : 0;
+        if (s == 0 || (side != 0 && s != side)) return false;
+        side = s;
+      }
+    if (!twoSided && side < 0) return false;
+    kind = twoSided ? "flat two-sided emitting object over a bare sensor" : "flat emitting object over a bare sensor";
+    const double exitance = (twoSided ? 0.5 : 1.0) * power / area;  // π L
+    f = [=](double x, double y) {
+      double sum = 0.0;
+      for (const auto& polygon : polygons) sum += polygonFormFactor(polygon, glm::dvec3(x, y, 0.0));
+      return exitance * sum;
+    };
+  }
+  for (size_t i = 0; i < rects.size(); ++i) e[i] = rectMean(f, rects[i].x1, rects[i].x2, rects[i].y1, rects[i].y2, n);
+  return true;
+}
+
 std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& options) {
   const Camera& camera = scene.camera;
   if (camera.pixelsX <= 0 || camera.pixelsY <= 0 || !(camera.sensorWidthM > 0.0) || !(camera.sensorHeightM > 0.0))
@@ -493,6 +617,11 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
       continue;
     }
     if (light.type == LightType::Spot) return std::nullopt;
+    if (light.type == LightType::Object) {
+      std::string kind;
+      if (pinhole || !emittingObjectIrradiance(light, camera, frame, rects, n, power, e, kind)) return std::nullopt;
+      kinds.push_back(kind);
+    } else
 
     if (!pinhole) {
       switch (light.type) {

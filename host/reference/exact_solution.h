@@ -57,6 +57,10 @@ struct ExactOptions {
 //  bare sensor:  point lights in front of the sensor; disk and rect lights
 //                parallel to the sensor and facing it; lasers travelling
 //                along -z (any footprint, exact partial pixels);
+//                photometric lights; emitting objects: a rect or disk
+//                parallel to the sensor and facing it, a flat emitter of
+//                rects or triangles at any tilt above the sensor's plane
+//                with the sensor before one face, a sphere above it;
 //  pinhole:      rect lights parallel to the sensor, facing it, beyond the
 //                aperture.
 // Lights with no power in range, or that can never reach the sensor (behind

@@ -3,10 +3,14 @@
 #include "scene/object_field.h"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 
 #include <fmt/format.h>
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
+#include "camera/camera_frame.h"
 #include "materials/material_type.h"
 #include "scene/spd_field.h"
 #include "shapes/shape_type.h"
@@ -34,7 +38,7 @@ Keys shapeTypeNames() {
 // Every key some object takes (to name a typo such as "typ" before
 // complaining that "type" is missing).
 Keys anyObjectKey() {
-  Keys keys = {"name", "type", "material"};
+  Keys keys = {"name", "type", "material", "emission"};
   for (const ShapeTypeUnit* unit : shapeTypeUnits())
     for (std::string_view key : unit->keys)
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
@@ -90,10 +94,64 @@ SurfaceMaterial parseMaterial(const jf::Source& c, const Json& v, const std::str
   return m;
 }
 
+// The object's "emission" (lights/object_light.cpp): its power and spd as a
+// light's, and whether both faces emit.
+Light parseEmission(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
+                    const SceneObject& obj) {
+  if (!v.is_object())
+    c.fail(p, fmt::format("must be an object such as {{\"power_w\": 10, \"spd\": \"D65\"}} (got {})", describe(v)));
+  checkObject(c, v, p, {"power_w", "power_lm", "spd", "two_sided"}, "an object's emission");
+  Light light;
+  light.type = LightType::Object;
+  light.label = p;
+  light.name = obj.name;
+  parseLightPower(c, v, p, range, light);
+  bool twoSided = false;
+  if (const Json* t = find(v, "two_sided")) {
+    if (!t->is_boolean()) c.fail(child(p, "two_sided"), fmt::format("must be true or false (got {})", describe(*t)));
+    twoSided = t->get<bool>();
+    if (twoSided && obj.shape.type == ShapeType::Sphere)
+      c.fail(child(p, "two_sided"), "a sphere emits outwards only: light from its inside could never leave it");
+  }
+  placeEmission(obj.shape, twoSided, light);
+  return light;
+}
+
 }  // namespace
 
+void placeEmission(const Shape& shape, bool twoSided, Light& light) {
+  auto surface = std::make_shared<EmittingSurface>();
+  surface->twoSided = twoSided;
+  // The world box from the shape's primitives (read before validation: a
+  // shape validateScene refuses never reaches a render).
+  const CameraFrame world{.origin = {0.0, 0.0, 0.0}, .right = {1.0, 0.0, 0.0}, .up = {0.0, 1.0, 0.0},
+                          .forward = {0.0, 0.0, 1.0}};
+  std::vector<PlacedPrimitive> placed;
+  shapeTypeUnit(shape.type).place(shape, world, 0u, placed);
+  surface->boundsLo = placed.empty() ? shape.center : glm::dvec3(std::numeric_limits<double>::infinity());
+  surface->boundsHi = placed.empty() ? shape.center : -surface->boundsLo;
+  for (const PlacedPrimitive& p : placed) {
+    surface->boundsLo = glm::min(surface->boundsLo, p.bounds.lo);
+    surface->boundsHi = glm::max(surface->boundsHi, p.bounds.hi);
+  }
+  light.position = 0.5 * (surface->boundsLo + surface->boundsHi);
+  light.direction = {0.0, 0.0, 1.0};
+  light.uAxis = {1.0, 0.0, 0.0};
+  // The shape is copied: a Scene (and its lights) may outlive or be copied
+  // apart from the object it was read with.
+  surface->place = [copy = std::make_shared<const Shape>(shape)](const CameraFrame& frame) {
+    std::vector<PlacedPrimitive> out;
+    shapeTypeUnit(copy->type).place(*copy, frame, 0u, out);
+    std::vector<device::Primitive> primitives;
+    primitives.reserve(out.size());
+    for (const PlacedPrimitive& p : out) primitives.push_back(p.primitive);
+    return primitives;
+  };
+  light.surface = std::move(surface);
+}
+
 SceneObject parseObject(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range,
-                        uint64_t& trianglesLeft) {
+                        uint64_t& trianglesLeft, std::vector<Light>& emitters) {
   jf::Source c = outer;
   if (!v.is_object())
     c.fail(p, fmt::format("an object must be a JSON object such as {{\"type\": \"sphere\", ...}} (got {})",
@@ -114,7 +172,7 @@ SceneObject parseObject(const jf::Source& outer, const Json& v, const std::strin
     c.fail(tp, fmt::format("unknown object type {}{} (valid types: {})", jsonQuoted(type), jf::suggestion(type, types),
                            jf::joinKeys(types)));
   obj.shape.type = unit->type;
-  Keys allowed = {"name", "type", "material"};
+  Keys allowed = {"name", "type", "material", "emission"};
   allowed.insert(allowed.end(), unit->keys.begin(), unit->keys.end());
   checkObject(c, v, p, allowed, fmt::format("a {} object", type));
 
@@ -128,6 +186,7 @@ SceneObject parseObject(const jf::Source& outer, const Json& v, const std::strin
                              .materialPtr = mp};
   unit->parse(c, v, p, reading, obj.shape);
   trianglesLeft -= obj.shape.triangles.size();
+  if (const Json* e = find(v, "emission")) emitters.push_back(parseEmission(c, *e, child(p, "emission"), range, obj));
   return obj;
 }
 

@@ -10,8 +10,10 @@
 //   observer  "CIE1931_2" | "CIE1964_10"                   optional
 //   camera    {position, look_at, up, sensor{width_m, height_m, pixels},
 //              pinhole{distance_m, radius_m}, exposure_s}  required
-//   lights    [ {type, name, power_w or power_lm, spd, ...type fields} ] required, non-empty
-//   objects   [ {type, name, material, ...type fields} ]   optional (docs/objects.md)
+//   lights    [ {type, name, power_w or power_lm, spd, ...type fields} ] required, non-empty,
+//             unless an object emits
+//   objects   [ {type, name, material, emission, ...type fields} ] optional (docs/objects.md);
+//             emission {power_w or power_lm, spd, two_sided}
 //             rect {center, normal, u_axis, size_m}, disk {center, normal,
 //             radius_m}, sphere {center, radius_m}, mesh {file (OBJ),
 //             transform{translate, rotate_deg, scale}}; material {type:
@@ -148,6 +150,7 @@ const LightKeys& lightKeys() {
   static const LightKeys keys = [] {
     LightKeys k;
     for (const LightTypeUnit* unit : lightTypeUnits()) {
+      if (unit->onObject) continue;  // an object's "emission", not a light of "lights"
       k.types.push_back(unit->name);
       for (std::string_view key : unit->keys)
         if (std::find(k.any.begin(), k.any.end(), key) == k.any.end()) k.any.push_back(key);
@@ -155,43 +158,6 @@ const LightKeys& lightKeys() {
     return k;
   }();
   return keys;
-}
-
-// The light's spd and its power: power_w (radiant flux, W) or power_lm
-// (luminous flux, lm), one of them. Lumens become watts through the spd's
-// luminous efficacy, 683 lm/W x ∫V·S / ∫S over the whole emission.
-void parseLightPower(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
-                     Light& light) {
-  // null stands for absent, so `--set /lights/0/power_w=null` can switch a
-  // light from watts to lumens.
-  const auto given = [&](const char* key) {
-    const Json* x = find(v, key);
-    return x && !x->is_null() ? x : nullptr;
-  };
-  const Json* watts = given("power_w");
-  const Json* lumens = given("power_lm");
-  if (watts && lumens) c.fail(child(p, "power_lm"), "a light's power is power_w (watts) or power_lm (lumens), not both");
-  // A luminaire file gives its flux in lumens when the scene gives neither.
-  const bool fileLumens = !watts && !lumens && light.photometry;
-  if (!lumens && !fileLumens)
-    light.powerW = jf::getNonNegative(
-        c, require(c, v, p, "power_w", " (radiant flux in watts; or power_lm, luminous flux in lumens)"),
-        child(p, "power_w"));
-  const std::optional<double> blackbodyK = parseSpd(c, require(c, v, p, "spd"), child(p, "spd"), range, light);
-  if (!lumens && !fileLumens) return;
-  const std::string lp = child(p, lumens ? "power_lm" : "file");
-  light.powerLm = lumens ? jf::getNonNegative(c, *lumens, lp) : light.photometry->tableLumens();
-  light.powerW = 0.0;
-  if (light.powerLm == 0.0) return;
-  const double fraction = luminousFraction(light.spd, blackbodyK);
-  if (!(fraction > 0.0))
-    c.fail(lp, fmt::format("the spd ({}) has no power where the eye sees (V(λ) > 0, 360-830 nm), so lumens cannot set "
-                           "its power; give power_w",
-                           light.spdLabel));
-  light.powerW = light.powerLm / (kLumensPerWatt * fraction);
-  if (!std::isfinite(light.powerW))
-    c.fail(lp, fmt::format("{:g} lm of this spd ({}, {:g} lm/W) is more watts than a double holds", light.powerLm,
-                           light.spdLabel, kLumensPerWatt * fraction));
 }
 
 Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range) {
@@ -208,6 +174,10 @@ Light parseLight(const jf::Source& outer, const Json& v, const std::string& p, c
   const Json& t = require(c, v, p, "type", fmt::format(" (one of: {})", jf::joinKeys(keys.types)));
   std::string type = jf::getString(c, t, child(p, "type"));
   const LightTypeUnit* unit = lightTypeUnitNamed(type);
+  if (unit && unit->onObject)
+    c.fail(child(p, "type"), fmt::format("{} is not a light type of \"lights\": an object emits through its "
+                                         "\"emission\" (valid types: {})",
+                                         jf::jsonQuoted(type), jf::joinKeys(keys.types)));
   if (!unit)
     c.fail(child(p, "type"), fmt::format("unknown light type {}{} (valid types: {})", jf::jsonQuoted(type),
                                          jf::suggestion(type, keys.types), jf::joinKeys(keys.types)));
@@ -270,13 +240,17 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) 
   }
   scene.camera = parseCamera(c, require(c, root, "", "camera"), "/camera");
 
-  const Json& lights = require(c, root, "", "lights");
-  if (!lights.is_array() || lights.empty())
-    c.fail("/lights", fmt::format("must be a non-empty array of lights (got {})", describe(lights)));
-  if (lights.size() > size_t(kMaxLights))
-    c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", lights.size(), kMaxLights));
-  for (size_t i = 0; i < lights.size(); ++i)
-    scene.lights.push_back(parseLight(c, lights[i], child("/lights", i), scene.spectrum));
+  // Lights, then the objects' emissions: "lights" may be empty (or absent)
+  // when an object emits.
+  const Json* lights = find(root, "lights");
+  if (lights && !lights->is_array())
+    c.fail("/lights", fmt::format("must be a non-empty array of lights, or empty when an object has an \"emission\" "
+                                  "(got {})",
+                                  describe(*lights)));
+  if (lights && lights->size() > size_t(kMaxLights))
+    c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", lights->size(), kMaxLights));
+  for (size_t i = 0; lights && i < lights->size(); ++i)
+    scene.lights.push_back(parseLight(c, (*lights)[i], child("/lights", i), scene.spectrum));
 
   if (auto* objects = find(root, "objects")) {
     if (!objects->is_array())
@@ -284,9 +258,18 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) 
     if (objects->size() > size_t(kMaxObjects))
       c.fail("/objects", fmt::format("has {} objects; a scene has at most {}", objects->size(), kMaxObjects));
     uint64_t trianglesLeft = kMaxSceneTriangles;
-    for (size_t i = 0; i < objects->size(); ++i)
-      scene.objects.push_back(parseObject(c, (*objects)[i], child("/objects", i), scene.spectrum, trianglesLeft));
+    for (size_t i = 0; i < objects->size(); ++i) {
+      scene.objects.push_back(
+          parseObject(c, (*objects)[i], child("/objects", i), scene.spectrum, trianglesLeft, scene.lights));
+      if (scene.lights.size() > size_t(kMaxLights))
+        c.fail(child("/objects", i) + "/emission",
+               fmt::format("makes {} lights with the emitting objects before it; a scene has at most {}",
+                           scene.lights.size(), kMaxLights));
+    }
   }
+  if (scene.lights.empty())
+    c.fail("/lights", fmt::format("{}, and no object has an \"emission\": the scene has nothing that emits",
+                                  lights ? "must be a non-empty array of lights" : "missing required field (lights)"));
 
   if (auto* x = find(root, "render")) scene.render = parseRender(c, *x, "/render");
   if (auto* x = find(root, "output")) scene.outputSpectral = parseOutputSpectral(c, *x, "/output");

@@ -5,6 +5,7 @@
 // (object_field.cpp).
 #include "scene/spd_field.h"
 
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -191,6 +192,44 @@ std::optional<double> parseSpd(const jf::Source& c, const Json& v, const std::st
   light.spdLabel = std::move(resolved.label);
   light.spdFile = std::move(resolved.file);
   return resolved.blackbodyK;
+}
+
+// The light's spd and its power: power_w (radiant flux, W) or power_lm
+// (luminous flux, lm), one of them. Lumens become watts through the spd's
+// luminous efficacy, 683 lm/W x ∫V·S / ∫S over the whole emission.
+void parseLightPower(const jf::Source& c, const jf::Json& v, const std::string& p, const SpectrumRange& range,
+                     Light& light) {
+  // null stands for absent, so `--set /lights/0/power_w=null` can switch a
+  // light from watts to lumens.
+  const auto given = [&](const char* key) {
+    const jf::Json* x = jf::find(v, key);
+    return x && !x->is_null() ? x : nullptr;
+  };
+  const jf::Json* watts = given("power_w");
+  const jf::Json* lumens = given("power_lm");
+  if (watts && lumens)
+    c.fail(jf::child(p, "power_lm"), "a light's power is power_w (watts) or power_lm (lumens), not both");
+  // A luminaire file gives its flux in lumens when the scene gives neither.
+  const bool fileLumens = !watts && !lumens && light.photometry;
+  if (!lumens && !fileLumens)
+    light.powerW = jf::getNonNegative(
+        c, jf::require(c, v, p, "power_w", " (radiant flux in watts; or power_lm, luminous flux in lumens)"),
+        jf::child(p, "power_w"));
+  const std::optional<double> blackbodyK = parseSpd(c, jf::require(c, v, p, "spd"), jf::child(p, "spd"), range, light);
+  if (!lumens && !fileLumens) return;
+  const std::string lp = jf::child(p, lumens ? "power_lm" : "file");
+  light.powerLm = lumens ? jf::getNonNegative(c, *lumens, lp) : light.photometry->tableLumens();
+  light.powerW = 0.0;
+  if (light.powerLm == 0.0) return;
+  const double fraction = luminousFraction(light.spd, blackbodyK);
+  if (!(fraction > 0.0))
+    c.fail(lp, fmt::format("the spd ({}) has no power where the eye sees (V(λ) > 0, 360-830 nm), so lumens cannot set "
+                           "its power; give power_w",
+                           light.spdLabel));
+  light.powerW = light.powerLm / (kLumensPerWatt * fraction);
+  if (!std::isfinite(light.powerW))
+    c.fail(lp, fmt::format("{:g} lm of this spd ({}, {:g} lm/W) is more watts than a double holds", light.powerLm,
+                           light.spdLabel, kLumensPerWatt * fraction));
 }
 
 }  // namespace spectrace

@@ -30,6 +30,13 @@ ResolvedSpd resolveSpd(const json_fields::Source& c, const json_fields::Json& v,
 std::optional<double> parseSpd(const json_fields::Source& c, const json_fields::Json& v, const std::string& ptr,
                                const SpectrumRange& range, Light& light);
 
+// Reads an emitter's spd and its power (a light, or an object's
+// "emission", the object `v` at `p`): power_w (radiant flux, W) or power_lm
+// (luminous flux, lm), one of them, or for a luminaire neither (its file's
+// lumens). Lumens become watts through the spd's luminous efficacy.
+void parseLightPower(const json_fields::Source& c, const json_fields::Json& v, const std::string& p,
+                     const SpectrumRange& range, Light& light);
+
 // ∫V·S / ∫S over the whole emission of `spd` (of the blackbody at
 // blackbodyK, whose table covers only the scene's range), V the CIE
 // photopic curve: the 1931 ȳ, whichever observer the scene names, since

@@ -173,7 +173,7 @@ void validateLight(const Light& light, size_t index, const Scene& scene, const S
   if (uint32_t(light.type) >= kLightTypeCount) c.fail(at + "/type", "is not a light type", note);
   const LightTypeUnit& unit = lightTypeUnit(light.type);
   const LightChecker check(c, at, note);
-  checkPoint(c, check.pointer(unit.positionKey), light.position, note);
+  if (unit.positionKey) checkPoint(c, check.pointer(unit.positionKey), light.position, note);
   if (!(std::isfinite(light.powerW) && light.powerW >= 0.0))
     check.fail("power_w", fmt::format("must be a finite number >= 0 (got {})", check.got("power_w", light.powerW)));
   if (unit.directionKey) {

@@ -44,14 +44,6 @@ FN PhotometricLayout photometricTable(LightRecord light) {
   return t;
 }
 
-// aliasLookup (emit.h) over columns kept in the scene data, four words each.
-FN uint sceneAliasLookup(uint first, uint bits, uint64_t u) {
-  uint column = bits == 0u ? 0u : uint(u >> (64u - bits));
-  uint at = first + 4u * column;
-  uint64_t threshold = joinWords(readSceneWord(at), readSceneWord(at + 1u));
-  return (u << bits) < threshold ? column : readSceneWord(at + 2u);
-}
-
 // Bilinear intensity in the patch (c, g) at fractions s along C and r along
 // gamma; never below 0.
 FN float photometricBilinear(PhotometricLayout t, uint c, uint g, float s, float r) {

@@ -19,4 +19,12 @@ FN vec3 rectNormal(Primitive p) {
 
 FN vec3 rectSurfacePoint(Primitive p, vec3 point, vec3 n) { return pointOnPlane(p.a, point, n); }
 
+// Emitting objects (lights/object.h): a point uniform over the rect, and
+// its face.
+FN vec3 sampleRectPoint(Primitive p, float u, float v, OUT(vec3) n) {
+  PRECISE vec3 point = p.a + p.b * (2.0f * u - 1.0f) + p.c * (2.0f * v - 1.0f);
+  n = rectNormal(p);
+  return point;
+}
+
 #endif  // SPECTRACE_SHAPES_RECT_H

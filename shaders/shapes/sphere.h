@@ -31,4 +31,11 @@ FN vec3 sphereSurfacePoint(Primitive p, vec3 n) {
   return onSphere;
 }
 
+// Emitting objects (lights/object.h): a point uniform over the sphere, and
+// its outward normal.
+FN vec3 sampleSpherePoint(Primitive p, float u, float v, OUT(vec3) n) {
+  n = sampleSphere(u, v);
+  return sphereSurfacePoint(p, n);
+}
+
 #endif  // SPECTRACE_SHAPES_SPHERE_H

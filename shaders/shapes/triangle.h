@@ -29,4 +29,15 @@ FN vec3 triangleNormal(Primitive p) {
 
 FN vec3 triangleSurfacePoint(Primitive p, vec3 point, vec3 n) { return pointOnPlane(p.a, point, n); }
 
+// Emitting objects (lights/object.h): a point uniform over the triangle
+// (the square's upper half folded onto the lower), and its face.
+FN vec3 sampleTrianglePoint(Primitive p, float u, float v, OUT(vec3) n) {
+  bool fold = u + v > 1.0f;
+  float s = fold ? 1.0f - u : u;
+  float r = fold ? 1.0f - v : v;
+  PRECISE vec3 point = p.a + p.b * s + p.c * r;
+  n = triangleNormal(p);
+  return point;
+}
+
 #endif  // SPECTRACE_SHAPES_TRIANGLE_H

@@ -1,7 +1,8 @@
 #pragma once
 // Do two renders of one scene (aimed and analog, skipped and unskipped, ...)
 // have the same expected image? Pixel by pixel within their combined
-// standard errors (5 sigma), globally by chi-square, and in total.
+// standard errors (5 sigma), globally by chi-square, and in total. And does
+// a render match its scene's exact image, by the same tests?
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,8 @@
 
 #include "film/spectral_histogram.h"
 #include "compile/compile_scene.h"
+#include "reference/exact_solution.h"
+#include "render/renderer.h"
 #include "support/p_values.h"
 
 namespace spectrace::testing {
@@ -93,6 +96,40 @@ inline RenderComparison compareRenders(const PixelEstimates& a, const PixelEstim
               name.c_str(), (unsigned long long)a.countedBeams, (unsigned long long)b.countedBeams, result.cells,
               result.cells ? result.chi2 / result.cells : 0.0, result.pValue, result.worstZ, result.totalZ);
   return result;
+}
+
+// A render's pixels against the scene's exact image (host/reference,
+// exactSolution): z = (E - e) / sqrt(v e)
+// with the render's variance model (testing::pixelEstimates), where the
+// pixel expects at least 20 counts; 5 sigma each, a chi-square p-value
+// above 1e-3, and the total within 5 sigma.
+inline void expectMatchesExactImage(const Scene& scene, const RenderResult& r, uint64_t beams, const char* name) {
+  const auto exact = exactSolution(scene);
+  ASSERT_TRUE(exact.has_value()) << name;
+  const PixelEstimates est = pixelEstimates(r.histogram, r.plan, beams);
+  double chi2 = 0.0, total = 0.0, expectedTotal = 0.0, variance = 0.0, worst = 0.0;
+  int cells = 0, failures = 0;
+  for (size_t p = 0; p < est.irradiance.size(); ++p) {
+    const double e = exact->irradiance[p], v = est.variancePerMean[p];
+    total += est.irradiance[p];
+    expectedTotal += e;
+    variance += v * e;
+    if (e / v < 20.0) continue;
+    const double z = (est.irradiance[p] - e) / std::sqrt(v * e);
+    if (std::abs(z) >= 5.0 && ++failures <= 10)
+      ADD_FAILURE() << name << ": pixel " << p << ": " << est.irradiance[p] << " vs exact " << e << ", " << z
+                    << " sigma";
+    worst = std::max(worst, std::abs(z));
+    chi2 += z * z;
+    ++cells;
+  }
+  const double p = chiSquareUpperTail(chi2, cells);
+  const double totalZ = (total - expectedTotal) / std::sqrt(variance);
+  std::printf("%s: %d pixels, chi2/dof %.3f (p %.4f), worst %.2f sigma, total %+.2f sigma\n", name, cells,
+              chi2 / cells, p, worst, totalZ);
+  EXPECT_GT(cells, 300) << name;
+  EXPECT_GT(p, 1e-3) << name;
+  EXPECT_LT(std::abs(totalZ), 5.0) << name;
 }
 
 }  // namespace spectrace::testing

@@ -1,0 +1,190 @@
+// Exact references for emitting objects (an object's "emission",
+// lights/object_light.cpp), read from scene files as users write them, over
+// a 0.6 m bare sensor of 24 x 24 pixels:
+// - a rect and a disk facing the sensor give the configuration factor of a
+//   parallel rectangle or disk times their exitance;
+// - a sphere wholly above the sensor's plane lights it as a point of the
+//   same flux at its centre;
+// - a mesh that tiles the rect with triangles of unequal areas gives the
+//   rect's image (its points are uniform by area only if the alias table
+//   weighs triangles by area), and, two-sided, half of it; its exact image
+//   by Lambert's polygon form factor is the rect's by its configuration
+//   factor.
+// Each is rendered with the same beams on lavapipe and the CPU reference,
+// which must agree bit for bit; the CPU's film is checked per pixel within
+// 5 sigma, by a chi-square over the pixels and in total
+// (testing::expectMatchesExactImage). Then the refusals, each naming the
+// field.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "scene/scene.h"
+#include "support/device_renders.h"
+#include "support/render_comparison.h"
+#include "support/test_scale.h"
+
+namespace spectrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A directory for the scenes' OBJ files, removed when the program ends.
+const fs::path& sceneDir() {
+  struct Dir {
+    fs::path path = fs::temp_directory_path() / fmt::format("spectrace_emitting_{}", ::getpid());
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
+// The scene with `objects` (JSON array entries) over the sensor, lit by
+// them alone.
+Scene sceneWith(const std::string& objects) {
+  return parseScene(R"({"spectrum": {"min_nm": 360, "max_nm": 830, "bins": 16},
+      "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0],
+                 "sensor": {"width_m": 0.6, "height_m": 0.6, "pixels": [24, 24]}},
+      "render": {"wavelengths_per_beam": 1},
+      "objects": [)" + objects + "]}",
+                    sceneDir() / "scene.json");
+}
+
+// The 0.2 x 0.1 m rect at height 0.25 m, facing the sensor, as a grid of
+// cells of unequal widths, two triangles each, wound to face -z.
+void writeTiledRect(const std::string& name) {
+  const std::vector<double> xs = {-0.1, -0.07, 0.0, 0.02, 0.1}, ys = {-0.05, 0.01, 0.05};
+  std::ofstream obj(sceneDir() / name);
+  for (double y : ys)
+    for (double x : xs) obj << fmt::format("v {} {} 0.25\n", x, y);
+  const auto at = [&](size_t i, size_t j) { return j * xs.size() + i + 1; };
+  for (size_t j = 0; j + 1 < ys.size(); ++j)
+    for (size_t i = 0; i + 1 < xs.size(); ++i) {
+      obj << fmt::format("f {} {} {}\n", at(i, j), at(i, j + 1), at(i + 1, j + 1));
+      obj << fmt::format("f {} {} {}\n", at(i, j), at(i + 1, j + 1), at(i + 1, j));
+    }
+}
+
+const char* kRect = R"({"type": "rect", "center": [0, 0, 0.25], "normal": [0, 0, -1], "u_axis": [1, 0, 0],
+                        "size_m": [0.2, 0.1], "material": {"type": "absorber"},
+                        "emission": {"power_w": %g, "spd": "D65"}})";
+
+std::string rectWithPower(double watts) {
+  std::string s = kRect;
+  return s.replace(s.find("%g"), 2, fmt::format("{}", watts));
+}
+
+const uint64_t kBeams = testing::scaledBeams(2'000'000, 200'000);
+
+TEST(OpticsEmittingObject, RectGivesItsConfigurationFactorOnBothDevices) {
+  const Scene scene = sceneWith(R"({"type": "rect", "center": [0.03, -0.02, 0.25], "normal": [0, 0, -1],
+      "u_axis": [1, 0.5, 0], "size_m": [0.2, 0.1], "material": {"type": "diffuse", "reflectance": 0.5},
+      "emission": {"power_w": 2, "spd": "D65"}})");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, LightType::Object);
+  EXPECT_EQ(scene.lights[0].label, "/objects/0/emission");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 1), kBeams, "emitting rect");
+}
+
+TEST(OpticsEmittingObject, DiskGivesItsConfigurationFactorOnBothDevices) {
+  const Scene scene = sceneWith(R"({"type": "disk", "center": [0.02, 0.01, 0.2], "normal": [0, 0, -1],
+      "radius_m": 0.08, "material": {"type": "absorber"}, "emission": {"power_lm": 300, "spd": "A"}})");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 2), kBeams, "emitting disk");
+}
+
+TEST(OpticsEmittingObject, SphereLightsLikeAPointOfItsFluxOnBothDevices) {
+  const Scene scene = sceneWith(R"({"type": "sphere", "center": [0.03, -0.02, 0.2], "radius_m": 0.06,
+      "material": {"type": "absorber"}, "emission": {"power_w": 2, "spd": {"blackbody_k": 3000}}})");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, kBeams, 3), kBeams, "emitting sphere");
+}
+
+TEST(OpticsEmittingObject, MeshOfUnequalTrianglesGivesTheRectsImageOnBothDevices) {
+  writeTiledRect("tiled.obj");
+  const Scene mesh = sceneWith(R"({"type": "mesh", "file": "tiled.obj", "material": {"type": "absorber"},
+      "emission": {"power_w": 2, "spd": "D65"}})");
+  const Scene rect = sceneWith(rectWithPower(2.0));
+  // Two closed forms of one image: Lambert's polygon form factor summed
+  // over the triangles, and the parallel rectangle's configuration factor
+  // (to the float rounding of the primitives' corners).
+  const auto meshExact = exactSolution(mesh), rectExact = exactSolution(rect);
+  ASSERT_TRUE(meshExact && rectExact);
+  const double peak = *std::max_element(rectExact->irradiance.begin(), rectExact->irradiance.end());
+  for (size_t p = 0; p < rectExact->irradiance.size(); ++p)
+    ASSERT_NEAR(meshExact->irradiance[p], rectExact->irradiance[p], 1e-6 * peak) << "pixel " << p;
+  testing::expectMatchesExactImage(rect, testing::renderOnBothDevices(mesh, kBeams, 4), kBeams, "emitting mesh");
+}
+
+TEST(OpticsEmittingObject, TwoSidedMeshSendsHalfItsPowerEachWay) {
+  writeTiledRect("tiled_two_sided.obj");
+  const Scene mesh = sceneWith(R"({"type": "mesh", "file": "tiled_two_sided.obj", "material": {"type": "absorber"},
+      "emission": {"power_w": 2, "spd": "D65", "two_sided": true}})");
+  const Scene halfRect = sceneWith(rectWithPower(1.0));
+  testing::expectMatchesExactImage(halfRect, testing::renderOnBothDevices(mesh, kBeams, 5), kBeams,
+                                   "two-sided emitting mesh");
+}
+
+// Emitting objects are traced by light paths; the scene may have no
+// "lights"; an emitter's spd and power read as a light's.
+TEST(OpticsEmittingObject, SceneFileFormsAndRefusals) {
+  const Scene scene = sceneWith(R"({"name": "panel", "type": "disk", "center": [0, 0, 0.2], "normal": [0, 0, -1],
+      "radius_m": 0.05, "material": {"type": "absorber"}, "emission": {"power_lm": 683, "spd": {"line_nm": 555}}})");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].name, "panel");
+  EXPECT_NEAR(scene.lights[0].powerW, 1.0 / 1.0, 1e-3);  // V(555 nm) = 1.0000 to four places
+  const auto refusal = [](const std::string& object) {
+    try {
+      sceneWith(object);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string rect = R"({"type": "rect", "center": [0, 0, 0.25], "normal": [0, 0, -1], "size_m": [0.1, 0.1],
+                               "material": {"type": "absorber"}, "emission": )";
+  const struct {
+    std::string object, field, what;
+  } cases[] = {
+      {rect + "3}", "/objects/0/emission", "must be an object"},
+      {rect + R"({"power_w": 1, "power_lm": 2, "spd": "D65"}})", "/objects/0/emission/power_lm", "not both"},
+      {rect + R"({"power_w": 1, "spd": "D65", "colour": 1}})", "/objects/0/emission", "colour"},
+      {rect + R"({"power_w": 1}})", "/objects/0/emission", "spd"},
+      {rect + R"({"power_w": -1, "spd": "D65"}})", "/objects/0/emission/power_w", ""},
+      {rect + R"({"power_w": 1, "spd": "D65", "two_sided": "yes"}})", "/objects/0/emission/two_sided", "true or false"},
+      {R"({"type": "sphere", "center": [0, 0, 1], "radius_m": 0.1, "material": {"type": "absorber"},
+           "emission": {"power_w": 1, "spd": "D65", "two_sided": true}})",
+       "/objects/0/emission/two_sided", "outwards only"},
+      {R"({"type": "sphere", "center": [0, 0, 1], "radius_m": 0.1, "material": {"type": "absorber"}})", "/lights",
+       "nothing that emits"},
+  };
+  for (const auto& c : cases) {
+    const std::string message = refusal(c.object);
+    EXPECT_NE(message.find(c.field), std::string::npos) << c.object << "\n" << message;
+    EXPECT_NE(message.find(c.what), std::string::npos) << c.object << "\n" << message;
+  }
+  // "object" is not a type "lights" may name.
+  try {
+    parseScene(R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0],
+                              "sensor": {"width_m": 0.1, "height_m": 0.1, "pixels": [4, 4]}},
+                   "lights": [{"type": "object", "power_w": 1, "spd": "D65"}]})",
+               sceneDir() / "scene.json");
+    ADD_FAILURE() << "a light of type object was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/lights/0/type"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("emission"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace spectrace
