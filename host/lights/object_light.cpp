@@ -19,6 +19,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "json/scene_error.h"
 #include "lights/light_shared.h"
 #include "spectrum/alias_table.h"
 #include "spectrum/wavelength_sampler.h"
@@ -55,8 +56,10 @@ void pack(const Light& light, const CameraFrame& frame, device::LightRecord& rec
   std::vector<double> areas;
   areas.reserve(primitives.size());
   for (const device::Primitive& p : primitives) areas.push_back(primitiveArea(p));
+  // Validation refuses shapes without area in double; a mesh of float
+  // slivers alone (each placed as nothing) can still have none.
   if (primitives.empty() || !(*std::max_element(areas.begin(), areas.end()) > 0.0))
-    throw std::logic_error(light.label + ": an emitting object without area");
+    throw SceneError(light.label + ": the object has no area to emit from: its triangles are too thin for float");
   const AliasTable alias = buildAliasTable(quantizeCdf(areas));
   const uint32_t header[] = {uint32_t(primitives.size()), alias.bits, light.surface->twoSided ? 1u : 0u, 0u};
   record.dataFirst = data.append(std::span<const uint32_t>(header));
