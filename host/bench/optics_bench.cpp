@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "camera/pinhole_camera.h"
+#include "lights/photometric_file.h"
 #include "render/renderer.h"
 #include "scene/scene_builders.h"
 
@@ -148,6 +149,49 @@ Scene opticsMeshScene(uint64_t triangles) {
   return scene;
 }
 
+Scene emittingSphereScene(uint64_t triangles) {
+  Scene scene = bareSensorScene(0.6, 0.6, 24, 24, SpectrumRange{}.bins);
+  SceneObject sphere;
+  sphere.label = "/objects/0";
+  if (triangles == 0) {
+    sphere.shape.type = ShapeType::Sphere;
+    sphere.shape.center = {0.0, 0.0, 0.2};
+    sphere.shape.radiusM = 0.06;
+    sphere.shape.closed = true;
+  } else {
+    sphere.shape = tessellatedSphere({0.0, 0.0, 0.2}, 0.06, triangles);
+  }
+  Light light;
+  light.type = LightType::Object;
+  light.label = "/objects/0/emission";
+  light.powerW = 1.0;
+  light.spd = makeLineSpd(550.0);
+  light.spdLabel = "550 nm";
+  placeEmission(sphere.shape, false, light);
+  scene.lights.push_back(light);
+  scene.objects.push_back(sphere);
+  return scene;
+}
+
+Scene photometricScene(double cStepDeg, double gammaStepDeg) {
+  Scene scene = bareSensorScene(0.6, 0.6, 24, 24, SpectrumRange{}.bins);
+  auto table = std::make_shared<PhotometricTable>();
+  for (double c = 0.0; c <= 360.0 + 1e-9; c += cStepDeg) table->cDegrees.push_back(std::min(c, 360.0));
+  for (double g = 0.0; g <= 180.0 + 1e-9; g += gammaStepDeg) table->gammaDegrees.push_back(std::min(g, 180.0));
+  // Different in every quadrant, brighter below the horizon than above it.
+  constexpr double kRad = std::numbers::pi / 180.0;
+  for (double c : table->cDegrees)
+    for (double g : table->gammaDegrees)
+      table->candela.push_back(800.0 * (0.25 + std::max(std::cos(g * kRad), 0.0)) *
+                               (1.0 + 0.7 * std::cos(c * kRad) + 0.4 * std::sin(c * kRad)));
+  Light light = surfaceLight(LightType::Photometric, {0.0, 0.0, 0.25}, {0.0, 0.0, -1.0}, 1.0, makeLineSpd(550.0),
+                             "550 nm");
+  light.photometry = std::move(table);
+  light.uAxis = {1.0, 0.0, 0.0};
+  scene.lights.push_back(light);
+  return scene;
+}
+
 std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& bench) {
   std::vector<OpticsRow> rows;
   auto add = [&](OpticsRow row) {
@@ -179,6 +223,19 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
   constexpr double kSquareInterior = 0.8 * (0.6 * 0.024 / 1.1) / 0.018;
   const Scene mesh = bench.objects ? opticsMeshScene(1'000'000) : Scene{};
   const Scene smallMesh = bench.objects ? opticsMeshScene(1'000) : Scene{};
+  // Emission from a surface: the draw is O(1) in the triangles (an alias
+  // table), so rows differ by the first walk through the emitter's tree.
+  const std::pair<const char*, uint64_t> emitters[] = {
+      {"analytic", 0}, {"1k triangles", 1'000}, {"1M triangles", 1'000'000}};
+  std::vector<Scene> emitterScenes;
+  for (const auto& [name, triangles] : emitters)
+    if (bench.objects) emitterScenes.push_back(emittingSphereScene(triangles));
+  // A luminaire's table: the patch is drawn in O(1) of its size (an alias
+  // table); steps of 30 (C) by 15 (gamma) degrees against 0.5 by 0.25.
+  const std::pair<const char*, double> tables[] = {{"13 x 13 angles", 30.0}, {"721 x 721 angles", 0.5}};
+  std::vector<Scene> photometricScenes;
+  for (const auto& [name, step] : tables)
+    if (bench.objects) photometricScenes.push_back(photometricScene(step, step / 2.0));
   for (const DeviceSpec& spec : devices) {
     const auto device = Device::open(spec);
     const size_t firstRow = rows.size();
@@ -233,6 +290,22 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
           compareVariants(smallMesh, "mesh 1k triangles", {"bvh", 500'000, {}},
                           {"brute force", 500'000, [](RenderOptions& o) { o.plan.bruteForceObjects = true; }}, *device);
       rows.back().sameImageAsFirst = bvh.a.image.irradiance == brute.a.image.irradiance;
+      // Each whole, then cut after emission (the profile's first stage:
+      // light, wavelength, origin and direction), which times the draw alone.
+      const auto emissionRows = [&](const Scene& scene, const char* sceneName, const std::string& variant) {
+        const RenderPair pair = renderPair(scene, *device, 2'000'000, bench, {});
+        add(rowOf(sceneName, variant, pair, meanImage(pair)));
+        const RenderPair cut = renderPair(scene, *device, 2'000'000, bench, [](RenderOptions& o) {
+          o.tracer.profileStage = device::kProfileStageEmission;
+        });
+        OpticsRow row = rowOf(sceneName, variant + ", emission", cut, meanImage(pair));
+        row.relMse = row.fom = 0.0;  // nothing is counted
+        add(std::move(row));
+      };
+      for (size_t i = 0; i < emitterScenes.size(); ++i)
+        emissionRows(emitterScenes[i], "emitting sphere", emitters[i].first);
+      for (size_t i = 0; i < photometricScenes.size(); ++i)
+        emissionRows(photometricScenes[i], "photometric light", tables[i].first);
     }
     for (size_t i = firstRow; i < rows.size(); ++i) rows[i].reference = spec.capabilities.reference;
   }

@@ -1,7 +1,9 @@
 #pragma once
 // The bench's "Optics" section: scenes with objects (the prism, the
 // ColorChecker, a mesh of a million triangles), the camera connection
-// against analog transport, and the BVH against brute force.
+// against analog transport, the BVH against brute force; and the O(1)
+// draws: emitting spheres of one primitive, 1k and 1M triangles, and a
+// photometric light of a small and a large table.
 //
 // Their error has no closed form, so it is measured from two renders with
 // different seeds, A and B: for an unbiased estimator E[(A - B)^2] is twice
@@ -48,6 +50,14 @@ Shape tessellatedSphere(const glm::dvec3& centre, double radius, uint64_t triang
 // 0.3 m, 1 m before the camera) lit by a spot that just covers it, seen
 // through a pinhole.
 Scene opticsMeshScene(uint64_t triangles);
+
+// An emitting sphere (radius 0.06 m, 1 W at 550 nm) 0.2 m above a 0.6 m
+// bare sensor: the analytic sphere (triangles 0) or a mesh of about
+// `triangles` triangles.
+Scene emittingSphereScene(uint64_t triangles);
+// A photometric light (an asymmetric 0-360 table in steps of cStepDeg and
+// gammaStepDeg) 0.25 m above the same sensor.
+Scene photometricScene(double cStepDeg, double gammaStepDeg);
 
 struct OpticsBenchOptions {
   std::filesystem::path scenesDir;  // holds prism.json and colorchecker.json

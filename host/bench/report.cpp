@@ -228,7 +228,8 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
 namespace {
 
 // Scenes with objects: rates, figures of merit, and the same-run ratios the
-// optics issue asks for (connection : analog, BVH : brute force, GPU : CPU).
+// optics issue asks for (connection : analog, BVH : brute force, GPU : CPU),
+// and the draws' cost against the emitter's size.
 void writeOpticsSection(std::ostream& md, const std::vector<OpticsRow>& rows) {
   md << "## Optics: scenes with objects\n\n";
   md << "Beams through objects (shaders/transport.h). relMSE comes from two renders with seeds 1 and 2: "
@@ -257,6 +258,28 @@ void writeOpticsSection(std::ostream& md, const std::vector<OpticsRow>& rows) {
         md << fmt::format("- {} on {}: beams/s BVH : brute force = **{:.3g}** ({})\n", r.scene, r.deviceName,
                           r.beamsPerSecond() / brute->beamsPerSecond(),
                           brute->sameImageAsFirst ? "the same image bit for bit" : "the images differ");
+  }
+  // The O(1) draws: each emission-only row against its scene's first (the
+  // smallest table or the single primitive), and the whole beams likewise.
+  const std::string kCut = ", emission";
+  const auto isCut = [&](const OpticsRow& r) {
+    return r.variant.size() > kCut.size() && r.variant.compare(r.variant.size() - kCut.size(), kCut.size(), kCut) == 0;
+  };
+  for (const OpticsRow& r : rows) {
+    if (!isCut(r)) continue;
+    const OpticsRow* first = nullptr;
+    for (const OpticsRow& f : rows)
+      if (!first && isCut(f) && f.scene == r.scene && f.deviceName == r.deviceName) first = &f;
+    if (first == &r) continue;
+    const std::string smallest = first->variant.substr(0, first->variant.size() - kCut.size());
+    const std::string size = r.variant.substr(0, r.variant.size() - kCut.size());
+    const OpticsRow* wholeFirst = find(r.scene, smallest, r.deviceName);
+    const OpticsRow* whole = find(r.scene, size, r.deviceName);
+    md << fmt::format("- {} on {}: emission beams/s {} : {} = **{:.3g}**", r.scene, r.deviceName, smallest, size,
+                      first->beamsPerSecond() / r.beamsPerSecond());
+    if (wholeFirst && whole)
+      md << fmt::format(" (whole beams {:.3g})", wholeFirst->beamsPerSecond() / whole->beamsPerSecond());
+    md << "\n";
   }
   for (const OpticsRow& gpu : rows)
     for (const OpticsRow& cpu : rows)
