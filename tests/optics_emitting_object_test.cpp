@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -133,6 +134,45 @@ TEST(OpticsEmittingObject, TwoSidedMeshSendsHalfItsPowerEachWay) {
   const Scene halfRect = sceneWith(rectWithPower(1.0));
   testing::expectMatchesExactImage(halfRect, testing::renderOnBothDevices(mesh, kBeams, 5), kBeams,
                                    "two-sided emitting mesh");
+}
+
+// The object stays an object: a point light 0.4 m above the sensor's
+// centre and, halfway down, an absorbing disk of radius 0.1 m emitting
+// upwards. The disk's shadow is the disk of radius 0.2 m about the centre
+// (a point casts no penumbra) and its own light never comes down, so the
+// pixels wholly inside the shadow get nothing, and those wholly outside
+// get the point light's beams.
+TEST(OpticsEmittingObject, BlocksOtherLightsAsItsMaterialSays) {
+  const Scene withPoint = parseScene(R"({"spectrum": {"min_nm": 360, "max_nm": 830, "bins": 16},
+      "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0],
+                 "sensor": {"width_m": 0.6, "height_m": 0.6, "pixels": [24, 24]}},
+      "render": {"wavelengths_per_beam": 1},
+      "lights": [{"type": "point", "position": [0, 0, 0.4], "power_w": 1, "spd": "D65"}],
+      "objects": [{"type": "disk", "center": [0, 0, 0.2], "normal": [0, 0, 1], "radius_m": 0.1,
+                   "material": {"type": "absorber"}, "emission": {"power_w": 5, "spd": "D65"}}]})",
+                               sceneDir() / "scene.json");
+  ASSERT_EQ(withPoint.lights.size(), 2u);
+  const RenderResult r = testing::renderOnBothDevices(withPoint, kBeams, 6);
+  int inside = 0, outside = 0;
+  for (int row = 0; row < 24; ++row)
+    for (int col = 0; col < 24; ++col) {
+      const double x0 = 0.025 * col - 0.3, y0 = 0.025 * row - 0.3;
+      double farthest = 0.0;
+      for (double x : {x0, x0 + 0.025})
+        for (double y : {y0, y0 + 0.025}) farthest = std::max(farthest, std::hypot(x, y));
+      const double cx = std::clamp(0.0, x0, x0 + 0.025), cy = std::clamp(0.0, y0, y0 + 0.025);
+      const double nearest = std::hypot(cx, cy);
+      const float e = r.image.irradiance[size_t(row) * 24 + col];
+      if (farthest < 0.195) {
+        EXPECT_EQ(e, 0.0f) << "pixel " << col << ", " << row << " lies in the disk's shadow";
+        ++inside;
+      } else if (nearest > 0.205) {
+        EXPECT_GT(e, 0.0f) << "pixel " << col << ", " << row << " sees the point light";
+        ++outside;
+      }
+    }
+  EXPECT_GT(inside, 150);
+  EXPECT_GT(outside, 300);
 }
 
 // Emitting objects are traced by light paths; the scene may have no

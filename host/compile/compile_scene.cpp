@@ -309,6 +309,7 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
     throw SceneError(fmt::format("{}: camera paths alone cannot render this scene: {}; use --estimator light or both",
                                  sceneName(scene), cameraPathsUseless));
   compiled.device.constants.estimators = estimatorsFor(options, cameraPathsUseless);
+  if (options.cameraPaths) compiled.cameraPathsOffBecause = cameraPathsUseless;
   compiled.device.constants.wavelengthsPerPath = scene.render.wavelengthsPerBeam;
   const bool cameraPaths = (compiled.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
   // Camera connections, camera paths and beams of several wavelengths (each

@@ -78,6 +78,9 @@ struct CompiledScene {
   // the full spectrum, the mean CMF of the wavelengths drawn in it
   // (sampledBinCmfMeans), which develops colour in place of per-beam sums.
   std::vector<std::array<double, 3>> colourBinMeans;
+  // Why camera paths do not run though the options asked for them (their
+  // estimator's precondition, compile/estimators.h), or "".
+  std::string cameraPathsOffBecause;
 
   // W/m^2 per bin carried by one count when `beams` beams were traced: a
   // full-weight beam carries sampledPowerW * exposure / beams joules, spread

@@ -128,7 +128,9 @@ void checkFilmFitsMemory(const Scene& scene, const CompiledScene& plan, const De
 }
 
 std::vector<std::string> planNotes(const Scene& scene, const CompiledScene& plan) {
-  std::vector<std::string> notes{fmt::format("estimator: {}", estimatorsDescription(plan.device.constants.estimators))};
+  std::vector<std::string> notes{fmt::format(
+      "estimator: {}{}", estimatorsDescription(plan.device.constants.estimators),
+      plan.cameraPathsOffBecause.empty() ? "" : fmt::format(" (no camera paths: {})", plan.cameraPathsOffBecause))};
   std::vector<const LightSummary*> cannotShine;
   size_t traced = 0;
   for (const LightSummary& light : plan.summaries) {
