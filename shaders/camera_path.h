@@ -11,7 +11,8 @@
 // it meets, then the camera. The camera estimator counts exactly the paths
 // whose first vertex after the light is a diffuse surface met by a light
 // other than a laser (next-event estimation), and those that start on an
-// emitter with an area and meet no diffuse surface (seen directly); the
+// emitter with an area (a disk, a rect, an emitting object) and meet no
+// diffuse surface (seen directly); the
 // light estimator counts the others (trace.h skips the camera's). Each path
 // is counted once, so the sum is unbiased whenever each estimator is: a
 // multiple importance sampling whose weights are 0 or 1 (Veach 1997, 9.2).
@@ -70,9 +71,10 @@ FN void contributeWavelengths(INOUT(BeamTally) tally, uvec2 cell, PathWavelength
 // object, not the camera's body) stands between. What the vertex sends back
 // along the path is the light's irradiance there times rho / pi.
 FN void cameraPathLightSample(LightRecord light, SurfaceHit at, WavelengthFactors rho, float throughput, uvec4 words,
-                              uvec2 cell, PathWavelengths w, INOUT(BeamTally) tally) {
+                              uvec4 objectWords, uvec2 cell, PathWavelengths w, INOUT(BeamTally) tally) {
   vec3 lightPoint;
-  float arrival = lightArrival(light, at.point, uniformFromWord(words.x), uniformFromWord(words.y), lightPoint);
+  float arrival =
+      lightArrival(light, at.point, uniformFromWord(words.x), uniformFromWord(words.y), objectWords, lightPoint);
   if (!(arrival > 0.0f)) return;
   PRECISE vec3 toLight = lightPoint - at.point;
   PRECISE float distanceSq = dot3(toLight, toLight);
@@ -80,13 +82,21 @@ FN void cameraPathLightSample(LightRecord light, SurfaceHit at, WavelengthFactor
   PRECISE vec3 direction = toLight * (1.0f / distance);
   float cosSurface = dot3(direction, at.facing);
   if (!(cosSurface > 0.0f)) return;
+  // The shadow ray runs from its own start (offset by up to 256 ulps of the
+  // point, more than the margin) straight at the light point, and stops
+  // just short of it: an emitting object's own surface lies there, which a
+  // ray along `direction` could meet sooner where it crosses the surface
+  // at a grazing angle.
   vec3 start = offsetOffSurface(at.point, at.facing);
-  PRECISE float reach = distance * 0.99999f;
+  PRECISE vec3 startToLight = lightPoint - start;
+  PRECISE float shadowLength = sqrt(dot3(startToLight, startToLight));
+  PRECISE vec3 shadowDirection = startToLight * (1.0f / shadowLength);
+  PRECISE float reach = shadowLength * 0.99999f;
   ObjectHit blocker;
-  if (intersectObjects(start, direction, reach, true, blocker)) return;
+  if (intersectObjects(start, shadowDirection, reach, true, blocker)) return;
   bool counted;
   uvec2 unusedCell;
-  float toCamera = intersectCamera(start, direction, counted, unusedCell);
+  float toCamera = intersectCamera(start, shadowDirection, counted, unusedCell);
   if (toCamera >= 0.0f && toCamera < reach) return;
   PRECISE float ratio = throughput * 0.318309886f * arrival * cosSurface / distanceSq;  // rho / pi, rho below
   contributeWavelengths(tally, cell, w, rho, ratio, uniformFromWord(words.z));
@@ -95,7 +105,9 @@ FN void cameraPathLightSample(LightRecord light, SurfaceHit at, WavelengthFactor
 // Camera path `pathIndex`: traced, and its counts added to the film (or
 // noted in `tally`, as a beam's are).
 FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
-  LightRecord light = readLight(chooseLight(constants.seed, pathIndex, kRngBlockCameraLight));
+  uint lightIndex = chooseLight(constants.seed, pathIndex, kRngBlockCameraLight);
+  LightRecord light = readLight(lightIndex);
+  bool objectLight = SPECTRACE_LIGHT_ENABLED(kLightObject) && light.type == kLightObject;
   if (!lightLightsPoints(light)) return;
   uvec4 start = philox4x32(constants.seed, pathIndex, kRngBlockCameraStart);
   uvec4 spectral = philox4x32(constants.seed, pathIndex, kRngBlockCameraSpectral);
@@ -132,16 +144,22 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
       if (metCamera) reach = toCamera;
     }
     // After a diffuse vertex the light sample counted the emitter instead.
-    if (!afterDiffuse && lightSeenDirectly(light)) {
+    if (!afterDiffuse && lightSeenDirectly(light) && !objectLight) {
       float radiance = lightAlongRay(light, origin, direction, reach);
       if (radiance > 0.0f) contributeCounts(tally, cell, w, sharesTimes(w, throughput * radiance), rounding);
     }
-    if (!metObject || metCamera || vertex == constants.maxBounces) return;
+    if (!metObject || metCamera) return;
     Primitive surface = readPrimitive(hit.primitive);
-    Material material = readMaterial(surface.material);
-    if (materialEndsEveryBeam(material)) return;
     PRECISE vec3 found = origin + direction * hit.t;
     vec3 n = primitiveNormal(surface, found);
+    // An emitting object is seen where the path meets its surface.
+    if (!afterDiffuse && objectLight) {
+      float radiance = objectLightAlong(light, lightIndex, surface, n, direction);
+      if (radiance > 0.0f) contributeCounts(tally, cell, w, sharesTimes(w, throughput * radiance), rounding);
+    }
+    if (vertex == constants.maxBounces) return;
+    Material material = readMaterial(surface.material);
+    if (materialEndsEveryBeam(material)) return;
     SurfaceHit at;
     at.point = pointOnSurface(surface, found, n);
     at.fromOutside = dot3(direction, n) < 0.0f;
@@ -150,9 +168,11 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
     rounding = uniformFromWord(words.w);
     if (material.type == kMaterialDiffuse) {
       WavelengthFactors rho = reflectancesAt(material, w);
+      uvec4 objectWords = objectLight ? philox4x32(constants.seed, pathIndex, kRngBlockCameraEmitterPoint + vertex)
+                                      : uvec4(0u, 0u, 0u, 0u);
       cameraPathLightSample(light, at, rho, throughput,
-                            philox4x32(constants.seed, pathIndex, kRngBlockCameraVertex + 2u * vertex + 1u), cell, w,
-                            tally);
+                            philox4x32(constants.seed, pathIndex, kRngBlockCameraVertex + 2u * vertex + 1u), objectWords,
+                            cell, w, tally);
       // Cosine-weighted on: the BRDF times the cosine over the density is
       // rho, which the roulette keeps (surviveReflectance).
       if (!surviveReflectance(rho, uniformFromWord(words.x), w)) return;

@@ -196,6 +196,9 @@ SPECTRACE_CONSTANT uint kRngBlockCameraSpectral = 0x80000001u;
 SPECTRACE_CONSTANT uint kRngBlockCameraLight = 0x80000002u;
 SPECTRACE_CONSTANT uint kRngBlockCameraRound = 0x80000003u;
 SPECTRACE_CONSTANT uint kRngBlockCameraVertex = 0x80000010u;
+// A camera path's point on an emitting object at vertex v (alias (64 bit),
+// point u, point v): block kRngBlockCameraEmitterPoint + v.
+SPECTRACE_CONSTANT uint kRngBlockCameraEmitterPoint = 0xA0000000u;
 
 // The estimators a render runs (TraceConstants.estimators): each path index
 // traces a light path (a beam from a light, counted at the camera and
@@ -223,7 +226,7 @@ struct Primitive {
   vec3 b;
   uint material;  // index into the materials
   vec3 c;
-  uint padding0;
+  uint emitter;   // 1 + the index of the light it emits as (an emitting object's), else 0
 };
 // A node of the BVH, four wide (128 bytes): the boxes of up to four
 // children side by side, so that one read tests them all (four lanes of one
@@ -277,7 +280,8 @@ SPECTRACE_CONSTANT uint kBvhMaxIndex = 1u << (32u - kBvhCountBits);
 SPECTRACE_CONSTANT uint kPhotometricHeaderWords = 4u;
 
 // An emitting object's scene data (host/lights/object_light.cpp): a header
-// (primitive count, alias bits, two-sided, 0), the alias columns over its
+// (primitive count, alias bits, two-sided, total area in m^2 as a float),
+// the alias columns over its
 // primitives by area, four words each (threshold low, high, alias, 0), then
 // its primitives in the camera frame, kPrimitiveWords each (Primitive's
 // layout), the same float values the BVH's copies hold.

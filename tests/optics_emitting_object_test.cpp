@@ -177,8 +177,76 @@ TEST(OpticsEmittingObject, BlocksOtherLightsAsItsMaterialSays) {
   EXPECT_GT(outside, 300);
 }
 
-// Emitting objects are traced by light paths; the scene may have no
-// "lights"; an emitter's spd and power read as a light's.
+// Camera paths count every path from an emitting object. Seen directly:
+// through a pinhole, an emitting rect facing the sensor gives the pinhole
+// image of a uniform rect (the rect light's closed form), by camera paths
+// alone and by the default (both estimators).
+TEST(OpticsEmittingObject, CameraPathsSeeAnEmittingRectThroughAPinhole) {
+  const Scene scene = parseScene(R"({"spectrum": {"min_nm": 380, "max_nm": 780, "bins": 8},
+      "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0],
+                 "sensor": {"width_m": 0.024, "height_m": 0.024, "pixels": [24, 24]},
+                 "pinhole": {"distance_m": 0.05, "radius_m": 0.0015}},
+      "render": {"wavelengths_per_beam": 1},
+      "objects": [{"type": "rect", "center": [0.005, -0.004, 0.3], "normal": [0, 0, -1], "u_axis": [1, 0, 0],
+                   "size_m": [0.13, 0.12], "material": {"type": "absorber"},
+                   "emission": {"power_w": 1, "spd": "D65"}}]})",
+                                 sceneDir() / "scene.json");
+  CompileOptions cameraOnly;
+  cameraOnly.lightPaths = false;
+  const uint64_t paths = testing::scaledBeams(1'000'000, 200'000);
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, paths, 13, cameraOnly), paths,
+                                   "emitting rect by camera paths");
+  testing::expectMatchesExactImage(scene, testing::renderOnBothDevices(scene, paths, 14), paths,
+                                   "emitting rect by both estimators");
+}
+
+// Lighting a diffuse plate: an emitting rect and a one-sided emitting mesh
+// facing the plate (away from the camera) light it; the image by camera
+// paths alone (their light samples) and by light paths alone (with camera
+// connections) must agree within their noise, and the default (both) with
+// them. Each on both devices, bit for bit.
+TEST(OpticsEmittingObject, CameraPathsAgreeWithLightPathsOnADiffusePlate) {
+  writeTiledRect("tiled_for_camera.obj");
+  const Scene scene = parseScene(R"({"spectrum": {"min_nm": 380, "max_nm": 780, "bins": 4},
+      "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0],
+                 "sensor": {"width_m": 0.02, "height_m": 0.02, "pixels": [8, 8]},
+                 "pinhole": {"distance_m": 0.02, "radius_m": 0.002}},
+      "render": {"wavelengths_per_beam": 1},
+      "objects": [
+        {"type": "rect", "center": [0, 0, 0.3], "normal": [0, 0, -1], "u_axis": [1, 0, 0], "size_m": [0.4, 0.4],
+         "material": {"type": "diffuse", "reflectance": 0.8}},
+        {"type": "rect", "center": [0.04, 0.03, 0.12], "normal": [0.3, 0.2, 1], "size_m": [0.05, 0.03],
+         "material": {"type": "diffuse", "reflectance": 0.3}, "emission": {"power_w": 1, "spd": "D65"}},
+        {"type": "mesh", "file": "tiled_for_camera.obj",
+         "transform": {"scale": 0.3, "rotate_deg": [180, 0, 0], "translate": [-0.03, -0.02, 0.25]},
+         "material": {"type": "absorber"}, "emission": {"power_w": 2, "spd": "A"}}]})",
+                                 sceneDir() / "scene.json");
+  CompileOptions lightOnly;
+  lightOnly.cameraPaths = false;
+  CompileOptions cameraOnly;
+  cameraOnly.lightPaths = false;
+  const uint64_t small = testing::scaledBeams(100'000, 20'000);
+  testing::renderOnBothDevices(scene, small, 7, lightOnly);
+  testing::renderOnBothDevices(scene, small, 8, cameraOnly);
+  testing::renderOnBothDevices(scene, small, 9);
+  const uint64_t lightBeams = testing::scaledBeams(2'000'000, 400'000);
+  const RenderResult light = testing::renderOn(DeviceChoice::Cpu, scene, lightBeams, 10, lightOnly);
+  const uint64_t paths = testing::scaledBeams(400'000, 100'000);
+  const RenderResult camera = testing::renderOn(DeviceChoice::Cpu, scene, paths, 11, cameraOnly);
+  const RenderResult both = testing::renderOn(DeviceChoice::Cpu, scene, paths, 12);
+  const testing::PixelEstimates lightEstimates = testing::pixelEstimates(light.histogram, light.plan, lightBeams);
+  const auto cameraResult = testing::compareRenders(
+      lightEstimates, testing::pixelEstimates(camera.histogram, camera.plan, paths), "light paths vs camera paths");
+  EXPECT_EQ(cameraResult.cells, 64);
+  EXPECT_GT(cameraResult.pValue, 1e-3);
+  const auto bothResult = testing::compareRenders(
+      lightEstimates, testing::pixelEstimates(both.histogram, both.plan, paths), "light paths vs both");
+  EXPECT_EQ(bothResult.cells, 64);
+  EXPECT_GT(bothResult.pValue, 1e-3);
+}
+
+// The scene may have no "lights"; an emitter's spd and power read as a
+// light's.
 TEST(OpticsEmittingObject, SceneFileFormsAndRefusals) {
   const Scene scene = sceneWith(R"({"name": "panel", "type": "disk", "center": [0, 0, 0.2], "normal": [0, 0, -1],
       "radius_m": 0.05, "material": {"type": "absorber"}, "emission": {"power_lm": 683, "spd": {"line_nm": 555}}})");

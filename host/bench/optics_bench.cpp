@@ -167,7 +167,7 @@ Scene emittingSphereScene(uint64_t triangles) {
   light.powerW = 1.0;
   light.spd = makeLineSpd(550.0);
   light.spdLabel = "550 nm";
-  placeEmission(sphere.shape, false, light);
+  placeEmission(sphere.shape, false, 0, light);
   scene.lights.push_back(light);
   scene.objects.push_back(sphere);
   return scene;

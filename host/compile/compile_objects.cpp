@@ -40,7 +40,8 @@ WideBvh flatTree(const std::vector<PrimitiveBounds>& bounds, std::vector<uint32_
 
 }  // namespace
 
-void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device) {
+void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device,
+                    const std::vector<uint32_t>& emitterOf) {
   device::TraceConstants& c = device.constants;
   c.maxBounces = scene.render.maxBounces;
   if (scene.objects.empty()) return;
@@ -51,7 +52,10 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
     const SceneObject& object = scene.objects[i];
     device.materials.push_back(deviceMaterial(object.material, device));
     connects = connects || materialTypeUnit(object.material.type).connectsToCamera;
+    const size_t first = placed.size();
     shapeTypeUnit(object.shape.type).place(object.shape, frame, uint32_t(i), placed);
+    const uint32_t emitter = i < emitterOf.size() ? emitterOf[i] : 0u;
+    for (size_t p = first; p < placed.size(); ++p) placed[p].primitive.emitter = emitter;
   }
   std::vector<PrimitiveBounds> bounds;
   bounds.reserve(placed.size());

@@ -15,6 +15,9 @@ namespace spectrace {
 // vertices (kept only when some object's material connects);
 // options.bruteForceObjects: a flat tree that tests every primitive
 // instead of the BVH.
-void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device);
+// Each primitive of object i records emitterOf[i] (Primitive.emitter: 1 +
+// the index in device.lights of the object's emission; 0 or absent: none).
+void compileObjects(const Scene& scene, const CompileOptions& options, DeviceScene& device,
+                    const std::vector<uint32_t>& emitterOf = {});
 
 }  // namespace spectrace

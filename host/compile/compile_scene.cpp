@@ -301,7 +301,16 @@ CompiledScene compileScene(const Scene& scene, uint64_t seed, const CompileOptio
   for (size_t i = 0; i < lows.size(); ++i) compiled.device.lights[i].selectCdfLow = lows[i];
   buildAliasColumns(compiled.device);
   cameraConstants(scene, seed, compiled.device);
-  compileObjects(scene, options, compiled.device);
+  // Each emitting object's light: 1 + its index among the traced lights.
+  std::vector<uint32_t> emitterOf(scene.objects.size(), 0u);
+  uint32_t traced = 0;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    if (!compiled.summaries[i].traced) continue;
+    const auto& surface = scene.lights[i].surface;
+    if (surface && surface->objectIndex < emitterOf.size()) emitterOf[surface->objectIndex] = traced + 1;
+    ++traced;
+  }
+  compileObjects(scene, options, compiled.device, emitterOf);
   const std::string cameraPathsUseless = cameraPathsUselessBecause(scene, compiled.device);
   if (!options.lightPaths && !options.cameraPaths)
     throw SceneError(fmt::format("{}: no estimator: light paths and camera paths are both off", sceneName(scene)));

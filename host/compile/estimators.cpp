@@ -10,10 +10,8 @@ std::string cameraPathsUselessBecause(const Scene& scene, const DeviceScene& dev
     return "the bare sensor starts no camera paths (they need a pinhole or a lens)";
   bool seen = false, lightsPoints = false;
   for (const device::LightRecord& light : device.lights) {
-    // Camera paths would have to find the emitting surface where they meet
-    // it and sample it at their vertices; light paths alone count it, unbiased.
-    if (light.type == device::kLightObject) return "an object emits, and only light paths trace emitting objects";
-    seen = seen || light.type == device::kLightDisk || light.type == device::kLightRect;
+    seen = seen || light.type == device::kLightDisk || light.type == device::kLightRect ||
+           light.type == device::kLightObject;
     lightsPoints = lightsPoints || light.type != device::kLightLaser;
   }
   bool diffuse = false;

@@ -12,7 +12,7 @@ namespace spectrace {
 
 // Why camera paths could count nothing in this compiled scene (its camera
 // model starts none, or no traced light can be seen or light a diffuse
-// object) or cannot run in it (an object emits), or "" when they can.
+// object), or "" when they can.
 std::string cameraPathsUselessBecause(const Scene& scene, const DeviceScene& device);
 
 // The kEstimator* bits for `options` in this scene: camera paths only where

@@ -33,6 +33,7 @@ struct EmittingSurface {
   std::function<std::vector<device::Primitive>(const CameraFrame&)> place;
   glm::dvec3 boundsLo{0.0}, boundsHi{0.0};  // world axis-aligned box holding the surface
   bool twoSided = false;                     // emits from both faces (else along its normals)
+  size_t objectIndex = 0;                    // the object's index in the scene's objects
 };
 
 struct Light {

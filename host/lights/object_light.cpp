@@ -61,7 +61,10 @@ void pack(const Light& light, const CameraFrame& frame, device::LightRecord& rec
   if (primitives.empty() || !(*std::max_element(areas.begin(), areas.end()) > 0.0))
     throw SceneError(light.label + ": the object has no area to emit from: its triangles are too thin for float");
   const AliasTable alias = buildAliasTable(quantizeCdf(areas));
-  const uint32_t header[] = {uint32_t(primitives.size()), alias.bits, light.surface->twoSided ? 1u : 0u, 0u};
+  double area = 0.0;
+  for (double a : areas) area += a;
+  const uint32_t header[] = {uint32_t(primitives.size()), alias.bits, light.surface->twoSided ? 1u : 0u,
+                             std::bit_cast<uint32_t>(float(area))};
   record.dataFirst = data.append(std::span<const uint32_t>(header));
   appendAliasColumns(alias, data);
   for (const device::Primitive& p : primitives) {

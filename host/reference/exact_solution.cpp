@@ -437,6 +437,25 @@ std::array<double, 3> binnedXyzPerWatt(const Spd& spd, const SpectrumRange& rang
 
 // ---------------------------------------------------------------- the solver
 
+// An emitting object that is one one-sided rect parallel to the sensor,
+// facing it beyond the aperture's plane at distance d: its placement for
+// the pinhole's closed form (as a rect light's); false otherwise.
+bool emittingRectThroughPinhole(const Light& light, const CameraFrame& frame, double d, PinholeRect& ph) {
+  if (!light.surface || light.surface->twoSided) return false;
+  const std::vector<device::Primitive> primitives = light.surface->place(frame);
+  if (primitives.size() != 1 || primitives[0].type != device::kPrimitiveRect) return false;
+  const glm::dvec3 a(primitives[0].a), b(primitives[0].b), c(primitives[0].c);
+  const glm::dvec3 normal = glm::normalize(glm::cross(b, c));
+  if (!parallelToZ(normal) || !(normal.z < 0.0) || !(a.z > d)) return false;
+  ph.zr = a.z;
+  ph.centre = {a.x, a.y};
+  ph.u = glm::normalize(Vec2(b.x, b.y));
+  ph.v = glm::normalize(Vec2(c.x, c.y));
+  ph.halfW = glm::length(b);
+  ph.halfH = glm::length(c);
+  return true;
+}
+
 // Lambert's form factor of a polygon (vertices in order) seen from the
 // point p of the sensor plane, whose normal is +z: F = |Σ β_i z·u_i| / 2π,
 // β_i the angle the edge (v_i, v_i+1) subtends at p and u_i the unit normal
@@ -617,13 +636,11 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
       continue;
     }
     if (light.type == LightType::Spot) return std::nullopt;
-    if (light.type == LightType::Object) {
+    if (light.type == LightType::Object && !pinhole) {
       std::string kind;
-      if (pinhole || !emittingObjectIrradiance(light, camera, frame, rects, n, power, e, kind)) return std::nullopt;
+      if (!emittingObjectIrradiance(light, camera, frame, rects, n, power, e, kind)) return std::nullopt;
       kinds.push_back(kind);
-    } else
-
-    if (!pinhole) {
+    } else if (!pinhole) {
       switch (light.type) {
         case LightType::Point:
           kinds.push_back("point light over a bare sensor");
@@ -694,17 +711,22 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
         default: return std::nullopt;
       }
     } else {
-      if (light.type != LightType::Rect) return std::nullopt;
-      kinds.push_back("rect light through a pinhole");
       PinholeRect ph_{};
+      if (light.type == LightType::Rect) {
+        kinds.push_back("rect light through a pinhole");
+        ph_.zr = pos.z;
+        ph_.centre = {pos.x, pos.y};
+        rectAxes(light, frame, axis, ph_.u, ph_.v);
+        ph_.halfW = 0.5 * light.sizeM.x;
+        ph_.halfH = 0.5 * light.sizeM.y;
+      } else if (emittingRectThroughPinhole(light, frame, aperture->distanceM, ph_)) {
+        kinds.push_back("emitting rect through a pinhole");
+      } else {
+        return std::nullopt;
+      }
       ph_.d = aperture->distanceM;
       ph_.a = aperture->radiusM;
-      ph_.zr = pos.z;
-      ph_.centre = {pos.x, pos.y};
-      rectAxes(light, frame, axis, ph_.u, ph_.v);
-      ph_.halfW = 0.5 * light.sizeM.x;
-      ph_.halfH = 0.5 * light.sizeM.y;
-      ph_.radiance = power / (kPi * light.sizeM.x * light.sizeM.y);
+      ph_.radiance = power / (kPi * 4.0 * ph_.halfW * ph_.halfH);
       ph_.k = 1.0 - ph_.zr / ph_.d;
       ph_.footR = ph_.a * ph_.zr / ph_.d;
       const auto full = [&](double x, double y) { return ph_.fullIrradiance(x, y); };

@@ -61,8 +61,8 @@ struct ExactOptions {
 //                parallel to the sensor and facing it, a flat emitter of
 //                rects or triangles at any tilt above the sensor's plane
 //                with the sensor before one face, a sphere above it;
-//  pinhole:      rect lights parallel to the sensor, facing it, beyond the
-//                aperture.
+//  pinhole:      rect lights, and emitting objects of one rect, parallel to
+//                the sensor, facing it, beyond the aperture.
 // Lights with no power in range, or that can never reach the sensor (behind
 // it, facing away), contribute zero. Several lights add.
 std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& options = {});

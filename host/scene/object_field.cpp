@@ -97,7 +97,7 @@ SurfaceMaterial parseMaterial(const jf::Source& c, const Json& v, const std::str
 // The object's "emission" (lights/object_light.cpp): its power and spd as a
 // light's, and whether both faces emit.
 Light parseEmission(const jf::Source& c, const Json& v, const std::string& p, const SpectrumRange& range,
-                    const SceneObject& obj) {
+                    const SceneObject& obj, size_t objectIndex) {
   if (!v.is_object())
     c.fail(p, fmt::format("must be an object such as {{\"power_w\": 10, \"spd\": \"D65\"}} (got {})", describe(v)));
   checkObject(c, v, p, {"power_w", "power_lm", "spd", "two_sided"}, "an object's emission");
@@ -113,15 +113,16 @@ Light parseEmission(const jf::Source& c, const Json& v, const std::string& p, co
     if (twoSided && obj.shape.type == ShapeType::Sphere)
       c.fail(child(p, "two_sided"), "a sphere emits outwards only: light from its inside could never leave it");
   }
-  placeEmission(obj.shape, twoSided, light);
+  placeEmission(obj.shape, twoSided, objectIndex, light);
   return light;
 }
 
 }  // namespace
 
-void placeEmission(const Shape& shape, bool twoSided, Light& light) {
+void placeEmission(const Shape& shape, bool twoSided, size_t objectIndex, Light& light) {
   auto surface = std::make_shared<EmittingSurface>();
   surface->twoSided = twoSided;
+  surface->objectIndex = objectIndex;
   // The world box from the shape's primitives (read before validation: a
   // shape validateScene refuses never reaches a render).
   const CameraFrame world{.origin = {0.0, 0.0, 0.0}, .right = {1.0, 0.0, 0.0}, .up = {0.0, 1.0, 0.0},
@@ -151,7 +152,7 @@ void placeEmission(const Shape& shape, bool twoSided, Light& light) {
 }
 
 SceneObject parseObject(const jf::Source& outer, const Json& v, const std::string& p, const SpectrumRange& range,
-                        uint64_t& trianglesLeft, std::vector<Light>& emitters) {
+                        uint64_t& trianglesLeft, size_t objectIndex, std::vector<Light>& emitters) {
   jf::Source c = outer;
   if (!v.is_object())
     c.fail(p, fmt::format("an object must be a JSON object such as {{\"type\": \"sphere\", ...}} (got {})",
@@ -186,7 +187,8 @@ SceneObject parseObject(const jf::Source& outer, const Json& v, const std::strin
                              .materialPtr = mp};
   unit->parse(c, v, p, reading, obj.shape);
   trianglesLeft -= obj.shape.triangles.size();
-  if (const Json* e = find(v, "emission")) emitters.push_back(parseEmission(c, *e, child(p, "emission"), range, obj));
+  if (const Json* e = find(v, "emission"))
+    emitters.push_back(parseEmission(c, *e, child(p, "emission"), range, obj, objectIndex));
   return obj;
 }
 

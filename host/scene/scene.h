@@ -63,10 +63,10 @@ struct Scene {
 Scene loadScene(const std::filesystem::path& file);
 
 // Makes `light` (type object, with its power and spd set) the emission of
-// an object of this shape: its surface (placed by the shape's unit at
+// the object objectIndex, of this shape: its surface (placed by the shape's unit at
 // compile time) and its world box. How scene files read "emission", and
 // how code builds an emitting object.
-void placeEmission(const Shape& shape, bool twoSided, Light& light);
+void placeEmission(const Shape& shape, bool twoSided, size_t objectIndex, Light& light);
 // The scene's invariants, the same for scenes built in code and loaded
 // ones (the loader calls it): finite coordinates within the world bounds,
 // a spectrum range and bin count in range, a camera with a viewing direction

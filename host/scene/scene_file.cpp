@@ -260,7 +260,7 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) 
     uint64_t trianglesLeft = kMaxSceneTriangles;
     for (size_t i = 0; i < objects->size(); ++i) {
       scene.objects.push_back(
-          parseObject(c, (*objects)[i], child("/objects", i), scene.spectrum, trianglesLeft, scene.lights));
+          parseObject(c, (*objects)[i], child("/objects", i), scene.spectrum, trianglesLeft, i, scene.lights));
       if (scene.lights.size() > size_t(kMaxLights))
         c.fail(child("/objects", i) + "/emission",
                fmt::format("makes {} lights with the emitting objects before it; a scene has at most {}",
