@@ -12,9 +12,8 @@
 // whose first vertex after the light is a diffuse surface met by a light
 // other than a laser (next-event estimation), and those that start on an
 // emitter with an area (a disk, a rect, an emitting object) and meet no
-// diffuse surface (seen directly); the
-// light estimator counts the others (trace.h skips the camera's). Each path
-// is counted once, so the sum is unbiased whenever each estimator is: a
+// diffuse surface (seen directly); the light estimator counts the others
+// (trace.h skips the camera's). Each path is counted once, so the sum is unbiased whenever each estimator is: a
 // multiple importance sampling whose weights are 0 or 1 (Veach 1997, 9.2).
 // The camera estimator alone (--estimator camera) misses the light's paths:
 // lasers, and point and spot beams whose first surface is specular.
