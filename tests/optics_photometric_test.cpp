@@ -205,22 +205,9 @@ TEST(OpticsPhotometric, CameraPathsAgreeWithLightPathsOnADiffusePlate) {
   scene.lights = {photometricLight(table, testing::toWorld(scene.camera, {0.01, 0.003, 0.06}),
                                    testing::directionToWorld(scene.camera, {0.2, -0.1, 1.0}),
                                    testing::directionToWorld(scene.camera, {0.0, 1.0, 0.0}))};
-  CompileOptions lightOnly;
-  lightOnly.cameraPaths = false;
-  CompileOptions cameraOnly;
-  cameraOnly.lightPaths = false;
-  const uint64_t small = testing::scaledBeams(100'000, 20'000);
-  testing::renderOnBothDevices(scene, small, 5, lightOnly);
-  testing::renderOnBothDevices(scene, small, 6, cameraOnly);
-  const uint64_t lightBeams = testing::scaledBeams(2'000'000, 400'000);
-  const RenderResult light = testing::renderOn(DeviceChoice::Cpu, scene, lightBeams, 7, lightOnly);
-  const uint64_t paths = testing::scaledBeams(400'000, 100'000);
-  const RenderResult camera = testing::renderOn(DeviceChoice::Cpu, scene, paths, 8, cameraOnly);
-  const auto result = testing::compareRenders(testing::pixelEstimates(light.histogram, light.plan, lightBeams),
-                                              testing::pixelEstimates(camera.histogram, camera.plan, paths),
-                                              "light paths vs camera paths");
-  EXPECT_EQ(result.cells, 64);
-  EXPECT_GT(result.pValue, 1e-3);
+  testing::expectCameraPathsMatchLightPaths(scene, testing::scaledBeams(100'000, 20'000),
+                                            testing::scaledBeams(2'000'000, 400'000),
+                                            testing::scaledBeams(400'000, 100'000), 5);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "backend/device.h"
 #include "render/renderer.h"
+#include "support/render_comparison.h"
 
 namespace spectrace::testing {
 
@@ -53,6 +54,30 @@ inline RenderResult renderOnBothDevices(const Scene& scene, uint64_t beams, uint
   EXPECT_TRUE(gpu.histogram.colourSums() == cpu.histogram.colourSums()) << "colour sums differ";
   EXPECT_TRUE(gpu.histogram.squaredWeightSums() == cpu.histogram.squaredWeightSums()) << "squared weights differ";
   return cpu;
+}
+
+// Light paths alone (with camera connections) against camera paths alone
+// on one scene: first small renders of each on both devices, bit for bit
+// (seeds seed, seed + 1), then lightBeams and `paths` on the CPU reference
+// (seeds seed + 2, seed + 3), which must give the same image within their
+// noise (compareRenders). Returns the CPU's light-path estimates.
+inline PixelEstimates expectCameraPathsMatchLightPaths(const Scene& scene, uint64_t smallBeams, uint64_t lightBeams,
+                                                       uint64_t paths, uint64_t seed) {
+  CompileOptions lightOnly;
+  lightOnly.cameraPaths = false;
+  CompileOptions cameraOnly;
+  cameraOnly.lightPaths = false;
+  renderOnBothDevices(scene, smallBeams, seed, lightOnly);
+  renderOnBothDevices(scene, smallBeams, seed + 1, cameraOnly);
+  const RenderResult light = renderOn(DeviceChoice::Cpu, scene, lightBeams, seed + 2, lightOnly);
+  const RenderResult camera = renderOn(DeviceChoice::Cpu, scene, paths, seed + 3, cameraOnly);
+  PixelEstimates lightEstimates = pixelEstimates(light.histogram, light.plan, lightBeams);
+  const RenderComparison result = compareRenders(lightEstimates, pixelEstimates(camera.histogram, camera.plan, paths),
+                                                 "light paths vs camera paths");
+  const size_t pixels = lightEstimates.irradiance.size();
+  EXPECT_EQ(size_t(result.cells), pixels);
+  EXPECT_GT(result.pValue, 1e-3);
+  return lightEstimates;
 }
 
 }  // namespace spectrace::testing
