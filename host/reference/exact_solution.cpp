@@ -437,22 +437,22 @@ std::array<double, 3> binnedXyzPerWatt(const Spd& spd, const SpectrumRange& rang
 
 // ---------------------------------------------------------------- the solver
 
-// An emitting object that is one one-sided rect parallel to the sensor,
-// facing it beyond the aperture's plane at distance d: its placement for
-// the pinhole's closed form (as a rect light's); false otherwise.
-bool emittingRectThroughPinhole(const Light& light, const CameraFrame& frame, double d, PinholeRect& ph) {
-  if (!light.surface || light.surface->twoSided) return false;
-  const std::vector<device::Primitive> primitives = light.surface->place(frame);
-  if (primitives.size() != 1 || primitives[0].type != device::kPrimitiveRect) return false;
+// An emitter of these primitives that is one one-sided rect parallel to
+// the sensor, facing it from beyond the plane z = zMin: its placement
+// (zr, centre, u, v, halfW, halfH: a rect light's, for the bare sensor's
+// and the pinhole's closed forms); false otherwise.
+bool facingParallelRect(const std::vector<device::Primitive>& primitives, bool twoSided, double zMin,
+                        PinholeRect& rect) {
+  if (twoSided || primitives.size() != 1 || primitives[0].type != device::kPrimitiveRect) return false;
   const glm::dvec3 a(primitives[0].a), b(primitives[0].b), c(primitives[0].c);
   const glm::dvec3 normal = glm::normalize(glm::cross(b, c));
-  if (!parallelToZ(normal) || !(normal.z < 0.0) || !(a.z > d)) return false;
-  ph.zr = a.z;
-  ph.centre = {a.x, a.y};
-  ph.u = glm::normalize(Vec2(b.x, b.y));
-  ph.v = glm::normalize(Vec2(c.x, c.y));
-  ph.halfW = glm::length(b);
-  ph.halfH = glm::length(c);
+  if (!parallelToZ(normal) || !(normal.z < 0.0) || !(a.z > zMin)) return false;
+  rect.zr = a.z;
+  rect.centre = {a.x, a.y};
+  rect.u = glm::normalize(Vec2(b.x, b.y));
+  rect.v = glm::normalize(Vec2(c.x, c.y));
+  rect.halfW = glm::length(b);
+  rect.halfH = glm::length(c);
   return true;
 }
 
@@ -519,7 +519,7 @@ bool emittingObjectIrradiance(const Light& light, const Camera& camera, const Ca
   const std::vector<device::Primitive> primitives = light.surface->place(frame);
   if (primitives.empty()) return false;
   const device::Primitive& p = primitives[0];
-  const glm::dvec3 a(p.a), b(p.b), c(p.c);
+  const glm::dvec3 a(p.a), b(p.b);
   const bool single = primitives.size() == 1 && !twoSided;
   if (single && p.type == device::kPrimitiveSphere) {
     if (!(a.z > double(p.b.x))) return false;
@@ -531,16 +531,15 @@ bool emittingObjectIrradiance(const Light& light, const Camera& camera, const Ca
     return true;
   }
   std::function<double(double, double)> f;
-  if (single && p.type == device::kPrimitiveRect && parallelToZ(glm::normalize(glm::cross(b, c)))) {
-    if (!(glm::cross(b, c).z < 0.0) || !(a.z > 0.0)) return false;
+  PinholeRect rect{};
+  if (facingParallelRect(primitives, twoSided, 0.0, rect)) {
     kind = "emitting rect over a bare sensor";
-    const Vec2 u = glm::normalize(Vec2(b.x, b.y)), v = glm::normalize(Vec2(c.x, c.y));
-    const double hw = glm::length(b), hh = glm::length(c);
-    const double scale = power / (4.0 * hw * hh);  // E = π L F, L = Φ / (π A)
+    const double scale = power / (4.0 * rect.halfW * rect.halfH);  // E = π L F, L = Φ / (π A)
     f = [=](double x, double y) {
-      const Vec2 q = Vec2(a.x, a.y) - Vec2(x, y);
-      const double cu = glm::dot(q, u), cv = glm::dot(q, v);
-      return scale * parallelRectViewFactor(cu - hw, cu + hw, cv - hh, cv + hh, a.z);
+      const Vec2 q = rect.centre - Vec2(x, y);
+      const double cu = glm::dot(q, rect.u), cv = glm::dot(q, rect.v);
+      return scale * parallelRectViewFactor(cu - rect.halfW, cu + rect.halfW, cv - rect.halfH, cv + rect.halfH,
+                                            rect.zr);
     };
   } else if (single && p.type == device::kPrimitiveDisk) {
     if (!parallelToZ(b) || !(b.z < 0.0) || !(a.z > 0.0)) return false;
@@ -719,7 +718,8 @@ std::optional<ExactImage> exactSolution(const Scene& scene, const ExactOptions& 
         rectAxes(light, frame, axis, ph_.u, ph_.v);
         ph_.halfW = 0.5 * light.sizeM.x;
         ph_.halfH = 0.5 * light.sizeM.y;
-      } else if (emittingRectThroughPinhole(light, frame, aperture->distanceM, ph_)) {
+      } else if (light.surface &&
+                 facingParallelRect(light.surface->place(frame), light.surface->twoSided, aperture->distanceM, ph_)) {
         kinds.push_back("emitting rect through a pinhole");
       } else {
         return std::nullopt;
