@@ -162,6 +162,29 @@ FN float oneMinusCosFromSin(float s) {
   return h;
 }
 
+// The three-term Sellmeier index at a wavelength (nm): n^2 = 1 +
+// sum_i b_i l^2 / (l^2 - c_i), l in um. A constant index (every c zero)
+// exactly, without the float rounding of b l^2 / l^2: no dispersion, as
+// colour from the bins assumes. The host keeps poles out of the spectrum.
+FN float sellmeierIndexAt(vec3 b, vec3 c, float lambda) {
+  if (c.x == 0.0f && c.y == 0.0f && c.z == 0.0f) {
+    PRECISE float constant = 1.0f + b.x + b.y + b.z;
+    return sqrt(constant);
+  }
+  PRECISE float l = lambda * 0.001f;
+  PRECISE float l2 = l * l;
+  PRECISE float n2 = 1.0f + b.x * l2 / (l2 - c.x) + b.y * l2 / (l2 - c.y) + b.z * l2 / (l2 - c.z);
+  return sqrt(n2);
+}
+
+// Unpolarised Fresnel reflectance for eta = n_incident / n_transmitted.
+FN float fresnelDielectric(float cosIncident, float cosTransmitted, float eta) {
+  PRECISE float rs = (eta * cosIncident - cosTransmitted) / (eta * cosIncident + cosTransmitted);
+  PRECISE float rp = (cosIncident - eta * cosTransmitted) / (cosIncident + eta * cosTransmitted);
+  PRECISE float f = 0.5f * (rs * rs + rp * rp);
+  return f;
+}
+
 // Angular slack added to every aimed cone (radians, as a sine): covers the
 // float rounding of cone axes and directions (a few 1e-8), so the cone
 // always holds every direction that can be counted.

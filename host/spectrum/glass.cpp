@@ -98,4 +98,35 @@ double sellmeierIndex(const std::array<double, 3>& b, const std::array<double, 3
   return std::sqrt(n2);
 }
 
+// b follows from nd for any c: b = (nd^2 - 1) (d^2 - c) / d^2. nF - nC
+// grows from 0 (c = 0) without bound as c nears F^2 (the pole reaches the
+// F line), so one c in between gives vd; bisection finds it to the last
+// bit in double.
+std::optional<SellmeierGlass> modelGlass(double nd, double vd) {
+  if (!(std::isfinite(nd) && std::isfinite(vd) && nd > 1.0 && vd > 0.0)) return std::nullopt;
+  const double d2 = (kLineDNm / 1000.0) * (kLineDNm / 1000.0);
+  const double f2 = (kLineFNm / 1000.0) * (kLineFNm / 1000.0);
+  const double target = (nd - 1.0) / vd;
+  const auto glassWith = [&](double c) {
+    SellmeierGlass g;
+    g.name = "model glass";
+    g.b = {(nd * nd - 1.0) * (d2 - c) / d2, 0.0, 0.0};
+    g.cUm2 = {c, 0.0, 0.0};
+    return g;
+  };
+  const auto dispersion = [&](double c) {
+    const SellmeierGlass g = glassWith(c);
+    return sellmeierIndex(g.b, g.cUm2, kLineFNm) - sellmeierIndex(g.b, g.cUm2, kLineCNm);
+  };
+  double lo = 0.0, hi = f2;
+  for (int i = 0; i < 200 && lo < hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    const double x = dispersion(mid);
+    if (std::isfinite(x) && x < target) lo = mid;
+    else hi = mid;
+  }
+  return glassWith(lo);
+}
+
 }  // namespace spectrace

@@ -7,31 +7,11 @@
 
 // The Sellmeier index at a wavelength (nm); the host keeps poles out of the
 // spectrum range.
-FN float refractiveIndexAt(Material m, float lambda) {
-  // A constant index (every C zero) exactly, without the float rounding of
-  // B l^2 / l^2: no dispersion, as colour from the bins assumes.
-  if (m.sellmeierC.x == 0.0f && m.sellmeierC.y == 0.0f && m.sellmeierC.z == 0.0f) {
-    PRECISE float constant = 1.0f + m.sellmeierB.x + m.sellmeierB.y + m.sellmeierB.z;
-    return sqrt(constant);
-  }
-  PRECISE float l = lambda * 0.001f;
-  PRECISE float l2 = l * l;
-  PRECISE float n2 = 1.0f + m.sellmeierB.x * l2 / (l2 - m.sellmeierC.x) + m.sellmeierB.y * l2 / (l2 - m.sellmeierC.y) +
-                     m.sellmeierB.z * l2 / (l2 - m.sellmeierC.z);
-  return sqrt(n2);
-}
+FN float refractiveIndexAt(Material m, float lambda) { return sellmeierIndexAt(m.sellmeierB, m.sellmeierC, lambda); }
 
 // Whether the index depends on the wavelength (any Sellmeier C set).
 FN bool materialDisperses(Material m) {
   return m.type == kMaterialDielectric && (m.sellmeierC.x != 0.0f || m.sellmeierC.y != 0.0f || m.sellmeierC.z != 0.0f);
-}
-
-// Unpolarised Fresnel reflectance for eta = n_incident / n_transmitted.
-FN float fresnelDielectric(float cosIncident, float cosTransmitted, float eta) {
-  PRECISE float rs = (eta * cosIncident - cosTransmitted) / (eta * cosIncident + cosTransmitted);
-  PRECISE float rp = (cosIncident - eta * cosTransmitted) / (cosIncident + eta * cosTransmitted);
-  PRECISE float f = 0.5f * (rs * rs + rp * rp);
-  return f;
 }
 
 // A dispersive one keeps a path's hero wavelength only (wavelengths.h:
