@@ -8,17 +8,35 @@
 #include "cameras/bare_sensor.h"
 #include "cameras/pinhole.h"
 #include "cameras/thin_lens.h"
+#include "cameras/lens_system.h"
 
 // Where a beam from beyond the camera's front plane, travelling towards -z,
-// crosses the sensor plane, if the model lets it through; `flipped`: the
-// model's image is inverted on the sensor, so the pixel mapping turns it
-// upright.
-FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool) flipped) {
+// at wavelength lambda (nm), crosses the sensor plane, if the model lets it
+// through; `flipped`: the model's image is inverted on the sensor, so the
+// pixel mapping turns it upright; `transmission`: the share of the beam's
+// flux that gets there (1 but through a lens system's glass).
+FN bool cameraCrossing(vec3 origin, vec3 direction, float lambda, OUT(vec2) onSensor, OUT(bool) flipped,
+                       OUT(float) transmission) {
   uint type = SPECTRACE_CAMERA_TYPE;
-  flipped = type == kCameraPinhole || type == kCameraThinLens;
+  flipped = type == kCameraPinhole || type == kCameraThinLens || type == kCameraLensSystem;
+  transmission = 1.0f;
   if (type == kCameraPinhole) return pinholeCrossing(origin, direction, onSensor);
   if (type == kCameraThinLens) return thinLensCrossing(origin, direction, onSensor);
+  if (type == kCameraLensSystem) return lensSystemCrossing(origin, direction, lambda, onSensor, transmission);
   return bareSensorCrossing(origin, direction, onSensor);
+}
+
+// Whether the model's crossing depends on the wavelength (a lens system
+// with a dispersive glass).
+FN bool cameraDisperses() {
+  return SPECTRACE_CAMERA_TYPE == kCameraLensSystem && constants.cameraParams.w != 0.0f;
+}
+
+// The half width and height of the camera's body (objects.h:
+// intersectCamera): the sensor's, or a lens system's barrel where wider.
+FN vec2 cameraBodyHalfSize() {
+  if (SPECTRACE_CAMERA_TYPE == kCameraLensSystem) return vec2(constants.cameraParams.y, constants.cameraParams.z);
+  return constants.sensorHalfSize;
 }
 
 // A camera connection's end (light tracing: pbrt-v4's Camera::SampleWi,
@@ -26,7 +44,8 @@ FN bool cameraCrossing(vec3 origin, vec3 direction, OUT(vec2) onSensor, OUT(bool
 // model's entrance, uniform over it, and the entrance's area.
 FN vec3 cameraConnectionPoint(float u, float v, OUT(float) area) {
   uint type = SPECTRACE_CAMERA_TYPE;
-  if (type == kCameraPinhole || type == kCameraThinLens) return entranceDiskPoint(u, v, area);
+  if (type == kCameraPinhole || type == kCameraThinLens || type == kCameraLensSystem)
+    return entranceDiskPoint(u, v, area);
   return bareSensorConnectionPoint(u, v, area);
 }
 

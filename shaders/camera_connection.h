@@ -10,9 +10,12 @@
 // disk, a bare sensor's own area). The beam's flux (`ratio` times each
 // wavelength's share) times the BRDF (rho / pi), the geometry term and the
 // entrance's area is what reaches that point, and it goes on straight to
-// the sensor. Counted when nothing stands in between.
+// the sensor (through a lens system, deterministically: the share its
+// surfaces transmit, `transmission`, weights the count, so the estimator
+// stays unbiased with no roulette). Counted when nothing stands in between.
 FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing, float ratio, WavelengthFactors rho,
                         PathWavelengths w, INOUT(BeamTally) tally) {
+  keepWavelengthsThroughCamera(w);
   WavelengthFactors weight;
   bool any = false;
   for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
@@ -32,14 +35,16 @@ FN void connectToCamera(uint64_t beamIndex, uint bounce, vec3 point, vec3 facing
   float cosCamera = -direction.z;
   if (!(cosSurface > 0.0f) || !(cosCamera > 0.0f)) return;
   uvec2 cell;
-  if (!hitSensor(point, direction, cell)) return;
+  float transmission;
+  if (!hitSensor(point, direction, w.lambda[0], cell, transmission)) return;
   ObjectHit blocker;
   vec3 start = offsetOffSurface(point, facing);
   PRECISE float reach = distance * 0.99999f;
   if (intersectObjects(start, direction, reach, true, blocker)) return;
   WavelengthFactors count;
   for (uint j = 0u; j < kMaxWavelengthsPerPath; ++j) {
-    PRECISE float c = weight.value[j] * (1.0f / 3.14159265358979f) * cosSurface * cosCamera * area / distanceSq;
+    PRECISE float c =
+        weight.value[j] * (1.0f / 3.14159265358979f) * cosSurface * cosCamera * area / distanceSq * transmission;
     count.value[j] = c;
   }
   contributeCounts(tally, cell, w, count, uniformFromWord(words.z));

@@ -95,7 +95,8 @@ FN void cameraPathLightSample(LightRecord light, SurfaceHit at, WavelengthFactor
   if (intersectObjects(start, shadowDirection, reach, true, blocker)) return;
   bool counted;
   uvec2 unusedCell;
-  float toCamera = intersectCamera(start, shadowDirection, counted, unusedCell);
+  float unusedTransmission;
+  float toCamera = intersectCamera(start, shadowDirection, w.lambda[0], counted, unusedCell, unusedTransmission);
   if (toCamera >= 0.0f && toCamera < reach) return;
   PRECISE float ratio = throughput * 0.318309886f * arrival * cosSurface / distanceSq;  // rho / pi, rho below
   contributeWavelengths(tally, cell, w, rho, ratio, uniformFromWord(words.z));
@@ -138,7 +139,8 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
     if (vertex > 0u) {
       bool counted;
       uvec2 unusedCell;
-      float toCamera = intersectCamera(origin, direction, counted, unusedCell);
+      float unusedTransmission;
+      float toCamera = intersectCamera(origin, direction, w.lambda[0], counted, unusedCell, unusedTransmission);
       metCamera = toCamera >= 0.0f && toCamera < reach;
       if (metCamera) reach = toCamera;
     }

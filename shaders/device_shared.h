@@ -97,6 +97,10 @@ SPECTRACE_CONSTANT uint kAllLightTypes = (1u << kLightTypeCount) - 1u;  // a bit
 SPECTRACE_CONSTANT uint kCameraBareSensor = 0;
 SPECTRACE_CONSTANT uint kCameraPinhole = 1;
 SPECTRACE_CONSTANT uint kCameraThinLens = 2;
+SPECTRACE_CONSTANT uint kCameraLensSystem = 3;
+// A lens system's table in the scene data (shaders/cameras/lens_system.h):
+// its surface count, then this many words a surface.
+SPECTRACE_CONSTANT uint kLensSurfaceWords = 9u;
 SPECTRACE_CONSTANT uint kCameraTypeAtRunTime = 0xFFFFFFFFu;  // kSpecCameraType: read constants.cameraType
 
 // Specialisation constant ids. Every pipeline has the workgroup size; the
@@ -183,6 +187,10 @@ SPECTRACE_CONSTANT uint kRngBlockPhotometricTry = 0x40000000u;
 // An emitting object's beam (lights/object.h) takes its point on the chosen
 // primitive from one more block (point u, point v, side, spare).
 SPECTRACE_CONSTANT uint kRngBlockEmitterPoint = 0x60000000u;
+// A beam that reaches a lens system's sensor is kept with the probability
+// its surfaces transmit (Fresnel): block kRngBlockLensTransmission (choice,
+// spares). A beam meets the camera once.
+SPECTRACE_CONSTANT uint kRngBlockLensTransmission = 0x70000000u;
 // Camera paths (camera_path.h), keyed on (seed, path index, block) like
 // beams, in blocks far above any bounce's: the start (pixel u, v, aperture
 // u, v), the wavelength (interval (64 bit), position, rounding), the light

@@ -179,20 +179,24 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
 }
 
 // The camera's body, in the camera frame: the box |x| <= half width,
-// |y| <= half height, 0 <= z <= cameraFrontZ (its model's front plane: a
-// pinhole's aperture; 0 for a bare sensor, a flat plate). A beam that enters it through the aperture and
-// lands on the sensor is counted; any other beam that meets it is absorbed.
-// Returns the distance to the body (negative: the ray misses it), and
-// whether the beam is counted, at `cell`.
-FN float intersectCamera(vec3 origin, vec3 direction, OUT(bool) counted, OUT(uvec2) cell) {
-  counted = hitSensor(origin, direction, cell);
+// |y| <= half height (camera.h: cameraBodyHalfSize), 0 <= z <= cameraFrontZ
+// (its model's front plane: a pinhole's aperture; 0 for a bare sensor, a
+// flat plate). A beam that enters it through the aperture and lands on the
+// sensor is counted (at wavelength lambda, keeping `transmission` of its
+// flux); any other beam that meets it is absorbed. Returns the distance to
+// the body (negative: the ray misses it), and whether the beam is counted,
+// at `cell`.
+FN float intersectCamera(vec3 origin, vec3 direction, float lambda, OUT(bool) counted, OUT(uvec2) cell,
+                         OUT(float) transmission) {
+  counted = hitSensor(origin, direction, lambda, cell, transmission);
   if (counted) {
     PRECISE float toFront = (origin.z - constants.cameraFrontZ) / -direction.z;
     return toFront;
   }
   vec3 inverse = inverseDirection(direction);
-  vec3 lo = vec3(-constants.sensorHalfSize.x, -constants.sensorHalfSize.y, 0.0f);
-  vec3 hi = vec3(constants.sensorHalfSize.x, constants.sensorHalfSize.y, constants.cameraFrontZ);
+  vec2 halfSize = cameraBodyHalfSize();
+  vec3 lo = vec3(-halfSize.x, -halfSize.y, 0.0f);
+  vec3 hi = vec3(halfSize.x, halfSize.y, constants.cameraFrontZ);
   PRECISE vec3 t0 = (lo - origin) * inverse;
   PRECISE vec3 t1 = (hi - origin) * inverse;
   vec3 nearT = min(t0, t1);

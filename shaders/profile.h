@@ -72,7 +72,8 @@ FN bool profileBeam(uint64_t beamIndex, uint stage) {
   if (stage == kProfileStageEmission) return profileKeep(hash);
 
   uvec2 cell;
-  bool hit = hitSensor(origin, direction, cell);
+  float transmission;
+  bool hit = hitSensor(origin, direction, lambda, cell, transmission);
   if (stage == kProfileStageSensor) return profileKeep(profileMix(hash, hit ? cell.x ^ (cell.y << 16u) : 0u));
 
   // Counting with unit weight; exact colour as the tracer set it.

@@ -8,16 +8,18 @@
 // The seed's Camera.computeBeam(): the sensor lies in the plane z = 0 of the
 // camera frame and looks along +z, so a beam counts only when it travels
 // towards -z from beyond the camera's front plane (the sensor, or a
-// model's entrance) and its model lets it through (camera.h). Returns the
+// model's entrance) and its model lets it through (camera.h) at wavelength
+// lambda (nm), with the share `transmission` of its flux. Returns the
 // pixel's (column, row), or false for a miss. A beam parallel to the
 // sensor (direction.z == 0) never reaches a division; NaN or infinite hit
 // points fail the bounds tests.
-FN bool hitSensor(vec3 origin, vec3 direction, OUT(uvec2) cell) {
+FN bool hitSensor(vec3 origin, vec3 direction, float lambda, OUT(uvec2) cell, OUT(float) transmission) {
   cell = uvec2(0u, 0u);
+  transmission = 0.0f;
   if (!(direction.z < 0.0f) || !(origin.z > constants.cameraFrontZ)) return false;
   vec2 onSensor;
   bool flip;
-  if (!cameraCrossing(origin, direction, onSensor, flip)) return false;
+  if (!cameraCrossing(origin, direction, lambda, onSensor, flip, transmission)) return false;
   vec2 halfSize = constants.sensorHalfSize;
   vec2 pixelsPerMetre = constants.pixelsPerMetre;
   float hx = onSensor.x;

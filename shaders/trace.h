@@ -29,8 +29,9 @@
 // Without objects the wavelengths are drawn last, and only for a beam that
 // reaches the camera: nothing between the light and the sensor depends on
 // it, and most beams miss. With objects, materials depend on it, so it is
-// drawn before transport. Lazy drawing changes no beam: the spectral
-// block's words are the same whenever they are drawn.
+// drawn before transport, as it is before a lens system's glass. Lazy
+// drawing changes no beam: the spectral block's words are the same
+// whenever they are drawn.
 //
 // With camera paths, the paths they count are left to them (camera_path.h):
 // every path from an emitter with an area, and, from the other lights but
@@ -49,9 +50,19 @@ FN void traceLightPath(uint64_t beamIndex, INOUT(BeamTally) tally) {
                                             constants.wavelengthsPerPath);
     bool diffuseFirstIsCameras = cameraPaths && lightLightsPoints(light);
     transportBeam(beamIndex, origin, direction, ratio, w, uniformFromWord(spectral.w), diffuseFirstIsCameras, tally);
+  } else if (SPECTRACE_CAMERA_TYPE == kCameraLensSystem) {
+    // The lens bends each wavelength its own way: drawn before the sensor.
+    uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
+    PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),
+                                            constants.wavelengthsPerPath);
+    uvec2 cell;
+    float transmission;
+    if (hitSensor(origin, direction, w.lambda[0], cell, transmission) && ratio > 0.0f)
+      countAtCamera(beamIndex, cell, transmission, w, ratio, uniformFromWord(spectral.w), tally);
   } else {
     uvec2 cell;
-    bool hit = hitSensor(origin, direction, cell) && ratio > 0.0f;
+    float transmission;
+    bool hit = hitSensor(origin, direction, 0.0f, cell, transmission) && ratio > 0.0f;
     if (hit) {
       uvec4 spectral = philox4x32(constants.seed, beamIndex, kRngBlockSpectral);
       PathWavelengths w = drawPathWavelengths(light, joinWords(spectral.x, spectral.y), uniformFromWord(spectral.z),

@@ -17,6 +17,21 @@
 #include "camera_connection.h"
 #include "material.h"
 
+// A beam that reached the sensor in `cell` (hitSensor), keeping
+// `transmission` of its flux through the camera's glass (a lens system's):
+// kept whole with that probability (its own Philox block), so a plain film
+// still counts whole beams and the count is unbiased; its hero wavelength
+// alone through dispersive glass (keepWavelengthsThroughCamera).
+FN void countAtCamera(uint64_t beamIndex, uvec2 cell, float transmission, PathWavelengths w, float ratio,
+                      float spareUniform, INOUT(BeamTally) tally) {
+  if (transmission < 1.0f) {
+    uvec4 words = philox4x32(constants.seed, beamIndex, kRngBlockLensTransmission);
+    if (!(uniformFromWord(words.x) < transmission)) return;
+  }
+  keepWavelengthsThroughCamera(w);
+  contributeCounts(tally, cell, w, sharesTimes(w, ratio), spareUniform);
+}
+
 // The beam from its light (origin, direction, weight ratio), with the
 // wavelengths it carries, through the scene's objects to the camera. With
 // diffuseFirstIsCameras, a beam whose first surface is diffuse ends there:
@@ -30,12 +45,13 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     bool metObject = intersectObjects(origin, direction, 3.0e38f, false, hit);
     bool counted;
     uvec2 cell;
-    float toCamera = intersectCamera(origin, direction, counted, cell);
+    float transmission;
+    float toCamera = intersectCamera(origin, direction, w.lambda[0], counted, cell, transmission);
     if (toCamera >= 0.0f && (!metObject || toCamera <= hit.t)) {
       // A beam straight from a diffuse vertex is the connection's (counted
       // there), so analog counts take the others only.
       if (counted && ratio > 0.0f && !(connect && afterDiffuse))
-        contributeCounts(tally, cell, w, sharesTimes(w, ratio), spareUniform);
+        countAtCamera(beamIndex, cell, transmission, w, ratio, spareUniform, tally);
       return;
     }
     if (!metObject || bounce == constants.maxBounces) return;

@@ -88,6 +88,13 @@ FN void keepHeroOnly(INOUT(PathWavelengths) w, uint k) {
   w.share[0] = hero;
 }
 
+// A camera whose crossing depends on the wavelength (camera.h:
+// cameraDisperses, a lens system's glass) keeps the hero only, as a
+// dispersive surface does: the others would land on other pixels.
+FN void keepWavelengthsThroughCamera(INOUT(PathWavelengths) w) {
+  if (cameraDisperses() && constants.wavelengthsPerPath > 1u) keepHeroOnly(w, constants.wavelengthsPerPath);
+}
+
 // Russian roulette at a surface that keeps each wavelength's share times
 // its reflectance rho_j: on with probability p = the largest rho_j of the
 // carried wavelengths (the hero's when it is the only one), each share

@@ -43,6 +43,9 @@ class BareSensorModel final : public CameraModel {
   }
   bool imageFlipped() const override { return false; }
   std::optional<double> cameraPathEntranceAreaM2() const override { return std::nullopt; }
+  std::string cameraPathsAbsentBecause() const override {
+    return "the bare sensor starts no camera paths (they need a pinhole or a lens)";
+  }
   // Beams land on the plane whatever its size (a spot 1e6 m from a 1 mm
   // sensor matches its closed form: geometry_numerics_test).
   double smallestEntranceSine() const override { return 0.0; }

@@ -8,6 +8,7 @@
 // sensor beams from a light can land, why a beam cannot enter it) beside the
 // kernel's shaders/cameras/<kind>.h (where a beam crosses the sensor, a
 // camera connection's point); camera_types.cpp is the only table of them.
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,9 @@ class CameraFieldCheck {
   virtual std::string got(const std::string& key, double fallback) const = 0;
   // Fails unless `value` is a length in metres within the world bounds.
   virtual void checkLength(const std::string& key, double value) const = 0;
+  // The scene's spectrum range (nm), over which a glass must have an index.
+  virtual double spectrumMinNm() const = 0;
+  virtual double spectrumMaxNm() const = 0;
 };
 
 struct Camera;
@@ -87,6 +91,11 @@ class CameraModel {
   // model that starts none (the bare sensor, where light paths measure the
   // irradiance they are best at).
   virtual std::optional<double> cameraPathEntranceAreaM2() const = 0;
+  // Why a model without that entrance starts none (the estimator note).
+  virtual std::string cameraPathsAbsentBecause() const { return ""; }
+  // The files the model was read from (a lens file), which a render's
+  // state records with the scene's other files.
+  virtual std::vector<std::filesystem::path> files() const { return {}; }
   // The smallest angle (its sine) under which a light may see the entrance
   // (entranceSphere) for the model to tell beams that pass from beams that
   // miss; 0: any.

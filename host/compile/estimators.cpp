@@ -6,8 +6,7 @@
 namespace spectrace {
 
 std::string cameraPathsUselessBecause(const Scene& scene, const DeviceScene& device) {
-  if (!scene.camera.model->cameraPathEntranceAreaM2())
-    return "the bare sensor starts no camera paths (they need a pinhole or a lens)";
+  if (!scene.camera.model->cameraPathEntranceAreaM2()) return scene.camera.model->cameraPathsAbsentBecause();
   bool seen = false, lightsPoints = false;
   for (const device::LightRecord& light : device.lights) {
     seen = seen || light.type == device::kLightDisk || light.type == device::kLightRect ||

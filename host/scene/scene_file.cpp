@@ -288,7 +288,7 @@ Scene parseScene(const std::string& jsonText, const fs::path& file) {
 }
 
 std::vector<fs::path> referencedFiles(const Scene& scene) {
-  std::vector<fs::path> files;
+  std::vector<fs::path> files = scene.camera.model->files();
   for (const Light& light : scene.lights) {
     files.push_back(light.spdFile);
     files.push_back(light.photometryFile);

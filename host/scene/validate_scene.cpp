@@ -61,15 +61,18 @@ namespace {
 // The camera model's view of the checker: keys relative to /camera.
 class CameraChecker final : public CameraFieldCheck {
  public:
-  explicit CameraChecker(const SceneChecker& c) : c_(c) {}
+  CameraChecker(const SceneChecker& c, const SpectrumRange& spectrum) : c_(c), spectrum_(spectrum) {}
   [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
     c_.fail("/camera/" + key, what);
   }
   std::string got(const std::string& key, double fallback) const override { return c_.got("/camera/" + key, fallback); }
   void checkLength(const std::string& key, double value) const override;
+  double spectrumMinNm() const override { return spectrum_.minNm; }
+  double spectrumMaxNm() const override { return spectrum_.maxNm; }
 
  private:
   const SceneChecker& c_;
+  const SpectrumRange& spectrum_;
 };
 
 // A point within the world bounds.
@@ -97,7 +100,7 @@ void checkPositive(const SceneChecker& c, const std::string& ptr, double value) 
     c.fail(ptr, fmt::format("must be a finite number > 0 (got {})", c.got(ptr, value)));
 }
 
-void validateCamera(const Camera& camera, const SceneChecker& c) {
+void validateCamera(const Camera& camera, const SpectrumRange& spectrum, const SceneChecker& c) {
   checkPoint(c, "/camera/position", camera.position);
   checkPoint(c, "/camera/look_at", camera.lookAt);
   if (!finite(camera.up)) c.fail("/camera/up", "must be finite");
@@ -128,7 +131,7 @@ void validateCamera(const Camera& camera, const SceneChecker& c) {
   if (total > kMaxPixelsTotal)
     c.fail("/camera/sensor/pixels", fmt::format("too many pixels: {} x {} = {} (at most {})", camera.pixelsX,
                                                 camera.pixelsY, total, kMaxPixelsTotal));
-  camera.model->validate(CameraChecker(c));
+  camera.model->validate(CameraChecker(c, spectrum));
   checkPositive(c, "/camera/exposure_s", camera.exposureS);
 }
 
@@ -240,7 +243,7 @@ void validateSpectrum(const SpectrumRange& range, const SceneChecker& c) {
 
 void validateScene(const Scene& scene, const SceneChecker& c) {
   validateSpectrum(scene.spectrum, c);
-  validateCamera(scene.camera, c);
+  validateCamera(scene.camera, scene.spectrum, c);
   if (scene.lights.empty()) c.fail("/lights", "there are no lights");
   if (scene.lights.size() > size_t(kMaxLights))
     c.fail("/lights", fmt::format("has {} lights; a scene has at most {}", scene.lights.size(), kMaxLights));
