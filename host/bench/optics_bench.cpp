@@ -192,6 +192,18 @@ Scene photometricScene(double cStepDeg, double gammaStepDeg) {
   return scene;
 }
 
+// The ColorChecker scene through the N-BK7 singlet of data/lenses
+// (f = 100 mm) focused on the chart, on a 24 x 16 mm sensor: its middle.
+Scene singletColorChecker(const Scene& colorChecker, const std::filesystem::path& scenesDir) {
+  const std::string text = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1],
+    "sensor": {"width_m": 0.024, "height_m": 0.016, "pixels": [240, 160]},
+    "lens": {"file": "../data/lenses/nbk7_biconvex_100mm.json", "focus_distance_m": 0.56}},
+    "lights": [{"type": "point", "position": [0, 0, 1], "power_w": 1, "spd": {"line_nm": 550}}]})";
+  Scene scene = colorChecker;
+  scene.camera = parseScene(text, scenesDir / "singlet_colorchecker.json").camera;
+  return scene;
+}
+
 std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, const OpticsBenchOptions& bench) {
   std::vector<OpticsRow> rows;
   auto add = [&](OpticsRow row) {
@@ -201,6 +213,8 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
   const Scene prism = bench.objects ? loadScene(bench.scenesDir / "prism.json") : Scene{};
   const Scene colorChecker = bench.objects ? loadScene(bench.scenesDir / "colorchecker.json") : Scene{};
   const Scene thinLens = bench.objects ? loadScene(bench.scenesDir / "thin_lens.json") : Scene{};
+  const Scene doubleGauss = bench.objects ? loadScene(bench.scenesDir / "double_gauss.json") : Scene{};
+  const Scene singlet = bench.objects ? singletColorChecker(colorChecker, bench.scenesDir) : Scene{};
   // Two variants of one scene, measured against one reference (the first
   // variant's mean), so their FOM ratio is a ratio of squared error x time.
   struct Variant {
@@ -279,6 +293,13 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
                          o.plan.cameraPaths = false;
                        }},
                       *device);
+      // And through each lens system: the ColorChecker through the double
+      // Gauss, and (part of it) through the N-BK7 singlet.
+      compareVariants(doubleGauss, "double Gauss",
+                      {"connect", 2'000'000, [](RenderOptions& o) { o.plan.cameraPaths = false; }},
+                      {"analog", 20'000'000, [](RenderOptions& o) { o.plan.connect = false; }}, *device);
+      compareVariants(singlet, "singlet", {"connect", 2'000'000, [](RenderOptions& o) { o.plan.cameraPaths = false; }},
+                      {"analog", 20'000'000, [](RenderOptions& o) { o.plan.connect = false; }}, *device);
       {
         const RenderPair pair = renderPair(mesh, *device, 2'000'000, bench, {});
         add(rowOf("mesh 1M triangles", "default", pair, meanImage(pair)));

@@ -269,7 +269,8 @@ void checkGeometry(const LensSystem& where, const LensPrescription& lens) {
       const double gap = s[i].thicknessM - s[i].sagAt(r) + (last ? 0.0 : s[i + 1].sagAt(r));
       if (gap < 0.0 || (last && gap <= 0.0))
         c.fail(at(i, "thickness_m"),
-               last ? fmt::format("the last surface reaches the sensor {} m from the axis (thickness {} m)",
+               last ? fmt::format("the last surface reaches the sensor {} m from the axis (thickness {} m; "
+                                  "focus_distance_m solves it)",
                                   jf::fmtNum(r), jf::fmtNum(s[i].thicknessM))
                     : fmt::format("surfaces {} and {} cross {} m from the axis (thickness {} m)", i, i + 1,
                                   jf::fmtNum(r), jf::fmtNum(s[i].thicknessM)));

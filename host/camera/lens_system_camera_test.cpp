@@ -136,6 +136,28 @@ TEST_F(LensFiles, InlineFileAndPbrtTableGiveTheSameLens) {
   EXPECT_TRUE(referencedFiles(inlineLens).empty());
 }
 
+// The shipped double Gauss two ways: pbrt-v4's table (one index a glass)
+// and the JSON file (model glasses of the same nd): the same lens at the
+// d line, focused alike.
+TEST_F(LensFiles, ShippedDoubleGaussTableAndJsonAgreeAtTheDLine) {
+  const std::string lenses = std::string(SPECTRACE_SOURCE_DIR) + "/data/lenses/";
+  const Scene table = scene(R"({"focus_distance_m": 1, "file": ")" + lenses + R"(dgauss.50mm.dat"})");
+  const Scene json = scene(R"({"focus_distance_m": 1, "file": ")" + lenses + R"(double_gauss_50mm.json"})");
+  const LensPrescription& a = lensSystemOf(table.camera)->prescription;
+  const LensPrescription& b = lensSystemOf(json.camera)->prescription;
+  ASSERT_EQ(a.surfaces.size(), b.surfaces.size());
+  EXPECT_FALSE(a.disperses());
+  EXPECT_TRUE(b.disperses());
+  for (size_t i = 0; i < a.surfaces.size(); ++i) {
+    EXPECT_NEAR(a.surfaces[i].radiusM, b.surfaces[i].radiusM, 1e-15) << i;
+    EXPECT_NEAR(a.surfaces[i].semiApertureM, b.surfaces[i].semiApertureM, 1e-15) << i;
+    EXPECT_NEAR(a.surfaces[i].medium.indexAt(kLineDNm), b.surfaces[i].medium.indexAt(kLineDNm), 1e-12) << i;
+    EXPECT_EQ(a.surfaces[i].stop, b.surfaces[i].stop) << i;
+  }
+  EXPECT_NEAR(a.surfaces.back().thicknessM, b.surfaces.back().thicknessM, 1e-12);
+  EXPECT_NEAR(paraxialCardinal(a, kLineDNm)->focalLengthM, 0.0503582, 1e-7);  // Kolb et al.: 50.36 mm
+}
+
 TEST_F(LensFiles, FocusDistanceSolvesTheLastThickness) {
   const Scene s = scene(std::string(R"({"focus_distance_m": 1.5, "surfaces": )") + kSinglet + "}");
   const LensPrescription& lens = lensSystemOf(s.camera)->prescription;
