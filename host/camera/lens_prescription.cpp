@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "spectrum/glass.h"
 
@@ -43,15 +44,19 @@ bool LensPrescription::disperses() const {
 }
 
 ParaxialMatrix paraxialMatrix(const LensPrescription& lens, double lambdaNm) {
+  return lens.surfaces.empty() ? ParaxialMatrix{} : paraxialMatrixThrough(lens, lambdaNm, lens.surfaces.size() - 1);
+}
+
+ParaxialMatrix paraxialMatrixThrough(const LensPrescription& lens, double lambdaNm, size_t last) {
   ParaxialMatrix m;
   double before = 1.0;
-  for (size_t i = 0; i < lens.surfaces.size(); ++i) {
+  for (size_t i = 0; i <= last && i < lens.surfaces.size(); ++i) {
     const LensSurface& s = lens.surfaces[i];
     const double after = s.medium.indexAt(lambdaNm);
     const double power = s.radiusM == 0.0 ? 0.0 : (after - before) / s.radiusM;
     // [1 0; -P 1] * m
     m = {m.a, m.b, m.c - power * m.a, m.d - power * m.b};
-    if (i + 1 < lens.surfaces.size()) {
+    if (i < last && i + 1 < lens.surfaces.size()) {
       const double reduced = s.thicknessM / after;  // [1 t/n; 0 1] * m
       m = {m.a + reduced * m.c, m.b + reduced * m.d, m.c, m.d};
     }
@@ -91,6 +96,38 @@ std::optional<double> focusedBackThicknessM(const LensPrescription& lens, double
   const double back = image + cardinal->backPrincipalM;
   if (!(back > 0.0) || !std::isfinite(back)) return std::nullopt;
   return back;
+}
+
+namespace {
+
+// The stop's index and the stop height per entrance height, |a|.
+std::optional<std::pair<size_t, double>> stopAndHeightRatio(const LensPrescription& lens, double lambdaNm) {
+  std::optional<size_t> stop;
+  for (size_t i = 0; i < lens.surfaces.size(); ++i)
+    if (lens.surfaces[i].stop) {
+      if (stop) return std::nullopt;
+      stop = i;
+    }
+  if (!stop) return std::nullopt;
+  const double ratio = std::abs(paraxialMatrixThrough(lens, lambdaNm, *stop).a);
+  if (!(ratio > 0.0) || !std::isfinite(ratio)) return std::nullopt;
+  return std::pair{*stop, ratio};
+}
+
+}  // namespace
+
+std::optional<double> fNumber(const LensPrescription& lens, double lambdaNm) {
+  const auto stop = stopAndHeightRatio(lens, lambdaNm);
+  const auto cardinal = paraxialCardinal(lens, lambdaNm);
+  if (!stop || !cardinal || !(cardinal->focalLengthM > 0.0)) return std::nullopt;
+  return cardinal->focalLengthM * stop->second / (2.0 * lens.surfaces[stop->first].semiApertureM);
+}
+
+std::optional<double> stopSemiApertureForFNumber(const LensPrescription& lens, double n, double lambdaNm) {
+  const auto stop = stopAndHeightRatio(lens, lambdaNm);
+  const auto cardinal = paraxialCardinal(lens, lambdaNm);
+  if (!stop || !cardinal || !(cardinal->focalLengthM > 0.0) || !(n > 0.0)) return std::nullopt;
+  return cardinal->focalLengthM * stop->second / (2.0 * n);
 }
 
 }  // namespace spectrace

@@ -55,6 +55,9 @@ struct ParaxialMatrix {
   double a = 1.0, b = 0.0, c = 0.0, d = 1.0;
 };
 ParaxialMatrix paraxialMatrix(const LensPrescription& lens, double lambdaNm);
+// The same from the first surface through surface `last` (its refraction
+// included, not the gap after it).
+ParaxialMatrix paraxialMatrixThrough(const LensPrescription& lens, double lambdaNm, size_t last);
 
 // Its effective focal length, -1 / c (nullopt for an afocal system), and
 // where its principal planes lie, each from the vertex of its own end
@@ -73,5 +76,14 @@ std::optional<ParaxialCardinal> paraxialCardinal(const LensPrescription& lens, d
 // at or inside four focal lengths, the least object-to-image distance, or
 // a diverging system).
 std::optional<double> focusedBackThicknessM(const LensPrescription& lens, double focusDistanceM, double lambdaNm);
+
+// The working f-number for an object at infinity, f / (2 x the entrance
+// pupil's radius): a ray parallel to the axis at height y meets the stop at
+// height a y (a of the matrix through the stop), so the entrance pupil's
+// radius is the stop's semi-aperture over |a|. nullopt without one stop, a
+// positive focal length, or with a = 0.
+std::optional<double> fNumber(const LensPrescription& lens, double lambdaNm);
+// The stop's semi-aperture that gives f-number `n` (the inverse).
+std::optional<double> stopSemiApertureForFNumber(const LensPrescription& lens, double n, double lambdaNm);
 
 }  // namespace spectrace

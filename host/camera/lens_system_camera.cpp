@@ -294,8 +294,21 @@ void focus(const jf::Source& c, const std::string& focusPtr, LensPrescription& l
   lens.surfaces.back().thicknessM = *back;
 }
 
+// Narrows the stop to f-number `n` (paraxial, at the d line, for an object
+// at infinity); a lens opens no wider than its own stop allows.
+void stopDown(const jf::Source& c, const std::string& ptr, LensPrescription& lens, double n) {
+  const auto widest = fNumber(lens, kLineDNm);
+  const auto semiAperture = stopSemiApertureForFNumber(lens, n, kLineDNm);
+  if (!widest || !semiAperture) c.fail(ptr, "the lens forms no real image, so it has no f-number");
+  if (n < *widest)
+    c.fail(ptr, fmt::format("f/{} is wider than the lens opens: its stop allows f/{} at the widest", jf::fmtNum(n),
+                            jf::fmtNum(std::round(*widest * 1000.0) / 1000.0)));
+  for (LensSurface& s : lens.surfaces)
+    if (s.stop) s.semiApertureM = *semiAperture;
+}
+
 LensSystem parseLens(const jf::Source& scene, const jf::Json& v, const std::string& ptr) {
-  jf::checkObject(scene, v, ptr, {"surfaces", "file", "focus_distance_m"}, "camera.lens");
+  jf::checkObject(scene, v, ptr, {"surfaces", "file", "focus_distance_m", "f_number"}, "camera.lens");
   LensSystem lens;
   std::optional<double> focusDistance;
   if (const jf::Json* f = jf::find(v, "focus_distance_m"))
@@ -350,6 +363,10 @@ LensSystem parseLens(const jf::Source& scene, const jf::Json& v, const std::stri
   if (focusDistance) {
     focus(scene, jf::child(ptr, "focus_distance_m"), lens.prescription, *focusDistance);
     checkGeometry(lens, lens.prescription);
+  }
+  if (const jf::Json* n = jf::find(v, "f_number")) {
+    const std::string nPtr = jf::child(ptr, "f_number");
+    stopDown(scene, nPtr, lens.prescription, jf::getPositive(scene, *n, nPtr));
   }
   lens.focusDistanceM = focusDistance;
   return lens;

@@ -158,6 +158,28 @@ TEST_F(LensFiles, ShippedDoubleGaussTableAndJsonAgreeAtTheDLine) {
   EXPECT_NEAR(paraxialCardinal(a, kLineDNm)->focalLengthM, 0.0503582, 1e-7);  // Kolb et al.: 50.36 mm
 }
 
+// The f-number f / (2 x entrance pupil radius): with the stop at the
+// singlet's front, the pupil is the stop itself; the double Gauss opens to
+// f/2.03 (nominally f/2), and f_number narrows its stop to the pupil it
+// names.
+TEST_F(LensFiles, FNumberNarrowsTheStop) {
+  const Scene singlet = scene(std::string(R"({"f_number": 8, "surfaces": )") + kSinglet + "}");
+  const LensPrescription& a = lensSystemOf(singlet.camera)->prescription;
+  const double f = paraxialCardinal(a, kLineDNm)->focalLengthM;
+  EXPECT_NEAR(a.surfaces[0].semiApertureM, f / 16.0, 1e-15);
+  EXPECT_NEAR(*fNumber(a, kLineDNm), 8.0, 1e-12);
+  const std::string lenses = std::string(SPECTRACE_SOURCE_DIR) + "/data/lenses/";
+  const Scene wide = scene(R"({"focus_distance_m": 1, "file": ")" + lenses + R"(double_gauss_50mm.json"})");
+  EXPECT_NEAR(*fNumber(lensSystemOf(wide.camera)->prescription, kLineDNm), 2.030, 0.001);
+  const Scene narrow =
+      scene(R"({"focus_distance_m": 1, "f_number": 5.6, "file": ")" + lenses + R"(double_gauss_50mm.json"})");
+  const LensPrescription& b = lensSystemOf(narrow.camera)->prescription;
+  EXPECT_NEAR(*fNumber(b, kLineDNm), 5.6, 1e-12);
+  EXPECT_NEAR(b.surfaces[5].semiApertureM, 0.00855 * 2.0301534 / 5.6, 1e-7);
+  const std::string tooWide = refusal(R"({"f_number": 1.4, "file": ")" + lenses + R"(double_gauss_50mm.json"})");
+  EXPECT_NE(tooWide.find("/camera/lens/f_number: f/1.4 is wider than the lens opens"), std::string::npos) << tooWide;
+}
+
 TEST_F(LensFiles, FocusDistanceSolvesTheLastThickness) {
   const Scene s = scene(std::string(R"({"focus_distance_m": 1.5, "surfaces": )") + kSinglet + "}");
   const LensPrescription& lens = lensSystemOf(s.camera)->prescription;
