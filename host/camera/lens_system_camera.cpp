@@ -48,24 +48,9 @@ class LensSystemModel final : public EntranceDiskModel {
     for (size_t i = 0; i < surfaces.size(); ++i) {
       const LensMedium& m = surfaces[i].medium;
       if (m.isAir()) continue;
-      for (size_t k = 0; k < 3; ++k) {
-        const double poleNm = 1000.0 * std::sqrt(m.cUm2[k]);
-        if (m.b[k] != 0.0 && poleNm >= check.spectrumMinNm() && poleNm <= check.spectrumMaxNm())
-          failAt(i, "medium",
-                 fmt::format("the refractive index of {} has a pole at {} nm, inside the scene's spectrum range "
-                             "{}-{} nm",
-                             m.label, jf::fmtNum(poleNm), jf::fmtNum(check.spectrumMinNm()),
-                             jf::fmtNum(check.spectrumMaxNm())));
-      }
-      for (double nm : {check.spectrumMinNm(), check.spectrumMaxNm()}) {
-        const double n = m.indexAt(nm);
-        if (!(std::isfinite(n) && n >= 1.0))
-          failAt(i, "medium",
-                 fmt::format("the refractive index of {} must be >= 1 over the scene's spectrum range {}-{} nm, "
-                             "but at {} nm it is {}",
-                             m.label, jf::fmtNum(check.spectrumMinNm()), jf::fmtNum(check.spectrumMaxNm()),
-                             jf::fmtNum(nm), std::isnan(n) ? std::string("not a real number") : jf::fmtNum(n)));
-      }
+      const std::string problem =
+          sellmeierRangeProblem(m.b, m.cUm2, m.label, check.spectrumMinNm(), check.spectrumMaxNm());
+      if (!problem.empty()) failAt(i, "medium", problem);
     }
   }
 

@@ -98,28 +98,9 @@ void validate(const SurfaceMaterial& m, double minNm, double maxNm, const Materi
       if (!(std::isfinite(x) && x >= 0.0))
         check.fail(key, fmt::format("must be a finite number >= 0 (got {})", check.got(key, x)));
     }
-  // With B, C >= 0 every term B l^2 / (l^2 - C) falls as l grows between
-  // poles (its derivative in l^2 is -B C / (l^2 - C)^2), so without a pole
-  // inside the range n is finite there and least at max_nm: checking that
-  // end checks the whole range.
-  const std::string key = indexKey(check);
   const std::string label = m.glassLabel.empty() ? std::string("the dielectric") : m.glassLabel;
-  for (size_t i = 0; i < 3; ++i) {
-    const double poleNm = 1000.0 * std::sqrt(m.sellmeierC[i]);
-    if (m.sellmeierB[i] != 0.0 && poleNm >= minNm && poleNm <= maxNm)
-      check.fail(key, fmt::format("the refractive index of {} has a pole at {} nm (C{} = {} um^2), inside the "
-                                  "scene's spectrum range {}-{} nm",
-                                  label, jf::fmtNum(poleNm), i + 1, jf::fmtNum(m.sellmeierC[i]), jf::fmtNum(minNm),
-                                  jf::fmtNum(maxNm)));
-  }
-  for (double nm : {maxNm, minNm}) {
-    const double n = m.refractiveIndexAt(nm);
-    if (!(std::isfinite(n) && n >= 1.0))
-      check.fail(key, fmt::format("the refractive index of {} must be finite and >= 1 over the scene's spectrum "
-                                  "range {}-{} nm, but at {} nm it is {}",
-                                  label, jf::fmtNum(minNm), jf::fmtNum(maxNm), jf::fmtNum(nm),
-                                  std::isnan(n) ? std::string("not a real number (n^2 <= 0)") : jf::fmtNum(n)));
-  }
+  const std::string problem = sellmeierRangeProblem(m.sellmeierB, m.sellmeierC, label, minNm, maxNm);
+  if (!problem.empty()) check.fail(indexKey(check), problem);
 }
 
 void pack(const SurfaceMaterial& m, device::Material& record, SceneData& data) {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "embedded_glass.h"
+#include "json/json_fields.h"
 #include "spectrum/cie_data.h"
 
 namespace spectrace {
@@ -96,6 +97,31 @@ double sellmeierIndex(const std::array<double, 3>& b, const std::array<double, 3
   // !(n2 > 0) also catches NaN inputs and inf/inf near a pole.
   if (!(n2 > 0.0) || !std::isfinite(n2)) return kNaN;
   return std::sqrt(n2);
+}
+
+// With b, c >= 0 every term b l^2 / (l^2 - c) falls as l grows between
+// poles (its derivative in l^2 is -b c / (l^2 - c)^2), so without a pole
+// inside the range n is finite there and least at maxNm: checking that end
+// checks the whole range.
+std::string sellmeierRangeProblem(const std::array<double, 3>& b, const std::array<double, 3>& cUm2,
+                                  const std::string& label, double minNm, double maxNm) {
+  namespace jf = json_fields;
+  for (size_t i = 0; i < 3; ++i) {
+    const double poleNm = 1000.0 * std::sqrt(cUm2[i]);
+    if (b[i] != 0.0 && poleNm >= minNm && poleNm <= maxNm)
+      return fmt::format("the refractive index of {} has a pole at {} nm (C{} = {} um^2), inside the scene's "
+                         "spectrum range {}-{} nm",
+                         label, jf::fmtNum(poleNm), i + 1, jf::fmtNum(cUm2[i]), jf::fmtNum(minNm), jf::fmtNum(maxNm));
+  }
+  for (double nm : {maxNm, minNm}) {
+    const double n = sellmeierIndex(b, cUm2, nm);
+    if (!(std::isfinite(n) && n >= 1.0))
+      return fmt::format("the refractive index of {} must be finite and >= 1 over the scene's spectrum range {}-{} "
+                         "nm, but at {} nm it is {}",
+                         label, jf::fmtNum(minNm), jf::fmtNum(maxNm), jf::fmtNum(nm),
+                         std::isnan(n) ? std::string("not a real number (n^2 <= 0)") : jf::fmtNum(n));
+  }
+  return "";
 }
 
 // b follows from nd for any c: b = (nd^2 - 1) (d^2 - c) / d^2. nF - nC

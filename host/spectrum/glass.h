@@ -28,6 +28,12 @@ std::vector<std::string> glassNames();
 // only they know which range they need.
 double sellmeierIndex(const std::array<double, 3>& b, const std::array<double, 3>& cUm2, double lambdaNm);
 
+// Why a Sellmeier index (every b, c >= 0) labelled `label` gives no usable
+// index over [minNm, maxNm]: a pole inside the range, or n not finite and
+// >= 1 there; "" when it does. Dielectric materials and lens media share it.
+std::string sellmeierRangeProblem(const std::array<double, 3>& b, const std::array<double, 3>& cUm2,
+                                  const std::string& label, double minNm, double maxNm);
+
 // The Fraunhofer lines the Abbe number is defined on (ISO 7944): helium d,
 // hydrogen F and C, vacuum wavelengths in nm.
 inline constexpr double kLineDNm = 587.5618;
