@@ -136,31 +136,41 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
       if (found && anyHit) break;
     } else {
       BvhNode node = readBvhNode(child);
-      vec4 enter;
-      vec4 leave;
-      rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
-      // Children the ray misses (and empty slots) sort last, at 3.4e38
-      // (beyond any reach: tMax is at most 3.0e38). A fixed network of
-      // five compare-exchanges sorts the rest near to far: the same steps
-      // in every lane, where an insertion sort's loop would diverge.
-      bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
-      met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
-                  met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
-      vec4 key = vec4(met.x ? enter.x : 3.4e38f, met.y ? enter.y : 3.4e38f, met.z ? enter.z : 3.4e38f,
-                      met.w ? enter.w : 3.4e38f);
-      uvec4 slot = uvec4(0u, 1u, 2u, 3u);
-      sortChildPair(key, slot, 0, 1);
-      sortChildPair(key, slot, 2, 3);
-      sortChildPair(key, slot, 0, 2);
-      sortChildPair(key, slot, 1, 3);
-      sortChildPair(key, slot, 1, 2);
-      // Far to near onto the stack, the nearest on top.
-      for (int k = 3; k >= 0; --k) {
-        if (key[k] == 3.4e38f) continue;
-        stackEntry[depth] = (node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]];
-        stackEnter[depth] = key[k];
-        depth += 1u;
-        prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
+#ifdef SPECTRACE_CPU_WALK_STEP
+      // The CPU's vector form of the step below, the same bits
+      // (host/kernel/wide_walk.h); portableWalk keeps this text for tests.
+      if (!portableWalk) {
+        pushChildrenMet(origin, inverse, node, hit.t, stackEntry, stackEnter, depth,
+                        [this](uint c, uint n) { prefetchBvhChild(c, n); });
+      } else
+#endif
+      {
+        vec4 enter;
+        vec4 leave;
+        rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
+        // Children the ray misses (and empty slots) sort last, at 3.4e38
+        // (beyond any reach: tMax is at most 3.0e38). A fixed network of
+        // five compare-exchanges sorts the rest near to far: the same steps
+        // in every lane, where an insertion sort's loop would diverge.
+        bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
+        met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
+                    met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
+        vec4 key = vec4(met.x ? enter.x : 3.4e38f, met.y ? enter.y : 3.4e38f, met.z ? enter.z : 3.4e38f,
+                        met.w ? enter.w : 3.4e38f);
+        uvec4 slot = uvec4(0u, 1u, 2u, 3u);
+        sortChildPair(key, slot, 0, 1);
+        sortChildPair(key, slot, 2, 3);
+        sortChildPair(key, slot, 0, 2);
+        sortChildPair(key, slot, 1, 3);
+        sortChildPair(key, slot, 1, 2);
+        // Far to near onto the stack, the nearest on top.
+        for (int k = 3; k >= 0; --k) {
+          if (key[k] == 3.4e38f) continue;
+          stackEntry[depth] = (node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]];
+          stackEnter[depth] = key[k];
+          depth += 1u;
+          prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
+        }
       }
     }
     // The nearest entry that the closest hit so far leaves in reach (with

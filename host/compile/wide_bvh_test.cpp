@@ -125,9 +125,13 @@ struct KernelHit {
 
 class Walker {
  public:
-  Walker(const std::vector<device::Primitive>& primitives, const std::vector<device::BvhNode>& nodes)
+  // `portable`: by the shader's own steps, not the CPU's vector step
+  // (kernel/wide_walk.h); the tests below walk both.
+  Walker(const std::vector<device::Primitive>& primitives, const std::vector<device::BvhNode>& nodes,
+         bool portable = false)
       : kernel_(constants(primitives), {}, {}, {}) {
     kernel_.setObjects(primitives, nodes, {}, {});
+    kernel_.portableWalk = portable;
   }
   KernelHit closest(const vec3& origin, const vec3& direction, float tMax, bool anyHit = false) {
     device::BeamKernel::ObjectHit hit;
@@ -251,21 +255,24 @@ TEST(WideBvh, NodesAreMostlyFull) {
 TEST(WideBvh, ClosestHitsOfRandomTrianglesEqualBruteForce) {
   const Soup soup = randomSoup(3000, 11);
   const Tree t = treeOf(soup);
-  Walker walker(t.primitives, t.wide.nodes);
-  std::mt19937_64 rng(12);
-  std::uniform_real_distribution<float> unit(-0.5f, 1.5f);
-  int hits = 0;
-  for (int r = 0; r < 5000; ++r) {
-    const vec3 origin(unit(rng), unit(rng), unit(rng));
-    const vec3 direction = unitVector(rng);
-    const float tMax = r % 4 == 0 ? 0.3f : 1e30f;
-    const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, tMax);
-    ASSERT_EQ(walker.closest(origin, direction, tMax), expected) << "ray " << r;
-    // Any-hit: found exactly when brute force finds a hit before tMax.
-    ASSERT_EQ(walker.closest(origin, direction, tMax, true).found, expected.found) << "ray " << r;
-    hits += expected.found ? 1 : 0;
+  for (const bool portable : {false, true}) {
+    SCOPED_TRACE(portable ? "the shader's steps" : "the CPU's vector step");
+    Walker walker(t.primitives, t.wide.nodes, portable);
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<float> unit(-0.5f, 1.5f);
+    int hits = 0;
+    for (int r = 0; r < 5000; ++r) {
+      const vec3 origin(unit(rng), unit(rng), unit(rng));
+      const vec3 direction = unitVector(rng);
+      const float tMax = r % 4 == 0 ? 0.3f : 1e30f;
+      const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, tMax);
+      ASSERT_EQ(walker.closest(origin, direction, tMax), expected) << "ray " << r;
+      // Any-hit: found exactly when brute force finds a hit before tMax.
+      ASSERT_EQ(walker.closest(origin, direction, tMax, true).found, expected.found) << "ray " << r;
+      hits += expected.found ? 1 : 0;
+    }
+    EXPECT_GT(hits, 500) << "the test must hit often";
   }
-  EXPECT_GT(hits, 500) << "the test must hit often";
 }
 
 // Rays aimed at the height field's shared vertices and edge midpoints, where
@@ -276,29 +283,33 @@ TEST(WideBvh, TiesAtSharedEdgesAndVerticesResolveAsBruteForce) {
   constexpr int kCells = 32;
   const Soup soup = heightField(kCells);
   const Tree t = treeOf(soup);
-  Walker walker(t.primitives, t.wide.nodes);
-  std::mt19937_64 rng(13);
-  std::uniform_int_distribution<int> cell(1, kCells - 1);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  int ties = 0, misses = 0;
-  for (int r = 0; r < 6000; ++r) {
-    const int i = cell(rng), j = cell(rng);
-    const float x = (float(i) + (r % 3 == 1 ? 0.5f : 0.0f)) / float(kCells);
-    const float y = (float(j) + (r % 3 == 2 ? 0.5f : 0.0f)) / float(kCells);
-    const vec3 target(x, y, 0.1f * std::sin(7.0f * x) * std::cos(5.0f * y));
-    const vec3 origin = target + vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, 0.5f + unit(rng));
-    const vec3 direction = glm::normalize(target - origin);
-    int atThatDistance = 0;
-    const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, 1e30f, &atThatDistance);
-    // Moller-Trumbore is not watertight: a ray through a vertex may slip
-    // between its triangles. The walk must then miss too.
-    ASSERT_EQ(walker.closest(origin, direction, 1e30f), expected) << "ray " << r;
-    ties += atThatDistance > 1 ? 1 : 0;
-    misses += expected.found ? 0 : 1;
+  for (const bool portable : {false, true}) {
+    SCOPED_TRACE(portable ? "the shader's steps" : "the CPU's vector step");
+    Walker walker(t.primitives, t.wide.nodes, portable);
+    std::mt19937_64 rng(13);
+    std::uniform_int_distribution<int> cell(1, kCells - 1);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int ties = 0, misses = 0;
+    for (int r = 0; r < 6000; ++r) {
+      const int i = cell(rng), j = cell(rng);
+      const float x = (float(i) + (r % 3 == 1 ? 0.5f : 0.0f)) / float(kCells);
+      const float y = (float(j) + (r % 3 == 2 ? 0.5f : 0.0f)) / float(kCells);
+      const vec3 target(x, y, 0.1f * std::sin(7.0f * x) * std::cos(5.0f * y));
+      const vec3 origin = target + vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, 0.5f + unit(rng));
+      const vec3 direction = glm::normalize(target - origin);
+      int atThatDistance = 0;
+      const KernelHit expected = walker.bruteForce(t.primitives, origin, direction, 1e30f, &atThatDistance);
+      // Moller-Trumbore is not watertight: a ray through a vertex may slip
+      // between its triangles. The walk must then miss too.
+      ASSERT_EQ(walker.closest(origin, direction, 1e30f), expected) << "ray " << r;
+      ties += atThatDistance > 1 ? 1 : 0;
+      misses += expected.found ? 0 : 1;
+    }
+    std::printf("  %d of 6000 rays met several triangles at the closest distance; %d slipped through\n", ties,
+                misses);
+    EXPECT_GT(ties, 100) << "the test must meet ties";
+    EXPECT_LT(misses, 600) << "most rays aimed at the surface hit it";
   }
-  std::printf("  %d of 6000 rays met several triangles at the closest distance; %d slipped through\n", ties, misses);
-  EXPECT_GT(ties, 100) << "the test must meet ties";
-  EXPECT_LT(misses, 600) << "most rays aimed at the surface hit it";
 }
 
 // The brute force's flat tree holds each primitive once, in order, in

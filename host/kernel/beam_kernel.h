@@ -12,6 +12,7 @@
 
 #include "device_shared.h"
 #include "kernel_interface.h"
+#include "kernel/wide_walk.h"
 #include "rng/philox.h"
 
 namespace spectrace::device {
@@ -151,6 +152,9 @@ class BeamKernel {
     else PendingCounts::addWide(counters, index, amount);
   }
   PendingCounts* pending = nullptr;
+  // Walk the BVH by the shader's own steps rather than wide_walk.h's
+  // (tests compare the two).
+  bool portableWalk = false;
 
  private:
   TraceConstants constants;
@@ -170,6 +174,7 @@ class BeamKernel {
 #define SPECTRACE_SINGLE_CHUNK true  // `counters` holds every stored pixel
 #define SPECTRACE_WITH_CAMERA_PATHS  // the whole kernel (the shader has a module without them)
 #define SPECTRACE_RECORDING recording
+#define SPECTRACE_CPU_WALK_STEP  // wide_walk.h
 #include "trace.h"
 #include "profile.h"  // the bench's cost profile
 };

@@ -1,0 +1,199 @@
+// The CPU's vector step of the BVH walk (wide_walk.h) against the shader's
+// own step (shaders/objects.h), which the CPU instance also compiles: the
+// same entry and exit distances, bit for bit, for random boxes and rays and
+// for the awkward ones (direction components of zero, origins on a box's
+// faces, signed zeros, empty and flat boxes), and the same children pushed,
+// nearest on top. Whole walks of both are checked against brute force in
+// compile/wide_bvh_test.cpp.
+#include "kernel/wide_walk.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "kernel/beam_kernel.h"
+
+namespace spectrace::device {
+namespace {
+
+using glm::vec3;
+using glm::vec4;
+
+struct Step {
+  std::vector<uint32_t> entries;
+  std::vector<float> keys;
+};
+
+class WalkSteps : public ::testing::Test {
+ protected:
+  WalkSteps() : kernel_(TraceConstants{}, {}, {}, {}) {}
+
+  // The shader's box test and the vector one must agree in every lane.
+  void expectSameDistances(const vec3& origin, const vec3& direction, const BvhNode& node, float tMax) {
+    const vec3 inverse = kernel_.inverseDirection(direction);
+    vec4 enter, leave;
+    kernel_.rayMeetsChildren(origin, inverse, node, tMax, enter, leave);
+    FloatLanes enterLanes, leaveLanes;
+    rayMeetsChildrenLanes(origin, inverse, node, tMax, enterLanes, leaveLanes);
+    for (int k = 0; k < 4; ++k) {
+      ASSERT_EQ(std::bit_cast<uint32_t>(enter[k]), std::bit_cast<uint32_t>(enterLanes[k])) << "enter, slot " << k;
+      ASSERT_EQ(std::bit_cast<uint32_t>(leave[k]), std::bit_cast<uint32_t>(leaveLanes[k])) << "leave, slot " << k;
+    }
+  }
+
+  // The shader's push, as objects.h does it (the text between its box test
+  // and the stack), and the vector one.
+  Step shaderStep(const vec3& origin, const vec3& direction, const BvhNode& node, float tMax) {
+    const vec3 inverse = kernel_.inverseDirection(direction);
+    vec4 enter, leave;
+    kernel_.rayMeetsChildren(origin, inverse, node, tMax, enter, leave);
+    vec4 key;
+    uvec4 slot(0u, 1u, 2u, 3u);
+    for (int k = 0; k < 4; ++k) {
+      const bool met = enter[k] <= leave[k] && (node.count[k] > 0u || node.child[k] > 0u);
+      key[k] = met ? enter[k] : 3.4e38f;
+    }
+    kernel_.sortChildPair(key, slot, 0, 1);
+    kernel_.sortChildPair(key, slot, 2, 3);
+    kernel_.sortChildPair(key, slot, 0, 2);
+    kernel_.sortChildPair(key, slot, 1, 3);
+    kernel_.sortChildPair(key, slot, 1, 2);
+    Step step;
+    for (int k = 3; k >= 0; --k) {
+      if (key[k] == 3.4e38f) continue;
+      step.entries.push_back((node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]]);
+      step.keys.push_back(key[k]);
+    }
+    return step;
+  }
+  Step vectorStep(const vec3& origin, const vec3& direction, const BvhNode& node, float tMax,
+                         int* prefetched = nullptr) {
+    uint32_t entries[4];
+    float keys[4];
+    uint32_t depth = 0;
+    const vec3 inverse = kernel_.inverseDirection(direction);
+    pushChildrenMet(origin, inverse, node, tMax, entries, keys, depth, [&](uint32_t, uint32_t) {
+      if (prefetched) ++*prefetched;
+    });
+    return Step{std::vector<uint32_t>(entries, entries + depth), std::vector<float>(keys, keys + depth)};
+  }
+
+  BeamKernel kernel_;
+};
+
+BvhNode randomNode(std::mt19937_64& rng) {
+  std::uniform_real_distribution<float> coordinate(-2.0f, 2.0f);
+  std::uniform_int_distribution<int> kind(0, 5);
+  BvhNode node{};
+  for (int k = 0; k < 4; ++k) {
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      const float u = coordinate(rng), v = coordinate(rng);
+      lo[a] = std::min(u, v);
+      hi[a] = kind(rng) == 0 ? lo[a] : std::max(u, v);  // some flat boxes
+    }
+    node.minX[k] = lo[0];
+    node.minY[k] = lo[1];
+    node.minZ[k] = lo[2];
+    node.maxX[k] = hi[0];
+    node.maxY[k] = hi[1];
+    node.maxZ[k] = hi[2];
+    const int what = kind(rng);
+    node.child[k] = what == 0 ? 0u : uint32_t(10 + 4 * k + what);  // slot 0 of some nodes empty below
+    node.count[k] = what == 0 || what > 3 ? 0u : uint32_t(what);
+  }
+  return node;
+}
+
+vec3 randomDirection(std::mt19937_64& rng) {
+  std::normal_distribution<float> normal;
+  std::uniform_int_distribution<int> zeroed(0, 7);
+  vec3 d(normal(rng), normal(rng), normal(rng));
+  // Some axes exactly zero, and some negative zero, as inverseDirection
+  // meets them.
+  for (int a = 0; a < 3; ++a) {
+    const int z = zeroed(rng);
+    if (z == 0) d[a] = 0.0f;
+    if (z == 1) d[a] = -0.0f;
+  }
+  if (d == vec3(0.0f)) d.z = 1.0f;
+  return d;
+}
+
+TEST_F(WalkSteps, VectorBoxTestGivesTheShadersDistancesBitForBit) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  std::uniform_int_distribution<int> pick(0, 3);
+  for (int r = 0; r < 20000; ++r) {
+    const BvhNode node = randomNode(rng);
+    vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng));
+    // Some origins on a child's faces: entry distances of +0 and -0.
+    if (r % 3 == 0) {
+      const int k = pick(rng);
+      origin.x = node.minX[k];
+      origin.y = node.maxY[k];
+    }
+    const float tMax = r % 5 == 0 ? 0.5f : 3.0e38f;
+    ASSERT_NO_FATAL_FAILURE(expectSameDistances(origin, randomDirection(rng), node, tMax)) << "case " << r;
+  }
+}
+
+TEST_F(WalkSteps, VectorStepPushesTheShadersChildrenNearestOnTop) {
+  std::mt19937_64 rng(32);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  std::uniform_int_distribution<int> pick(0, 3);
+  int pushedSomething = 0, pushedSeveral = 0;
+  for (int r = 0; r < 20000; ++r) {
+    const BvhNode node = randomNode(rng);
+    const vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng));
+    // Most rays aimed at a child's box, so that several are met.
+    const int k = pick(rng);
+    const vec3 aim(node.minX[k] + node.maxX[k], node.minY[k] + node.maxY[k], node.minZ[k] + node.maxZ[k]);
+    const vec3 direction = r % 4 == 0 ? randomDirection(rng) : glm::normalize(0.5f * aim - origin);
+    const float tMax = r % 5 == 0 ? 0.5f : 3.0e38f;
+    const Step expected = shaderStep(origin, direction, node, tMax);
+    int prefetched = 0;
+    const Step got = vectorStep(origin, direction, node, tMax, &prefetched);
+    ASSERT_EQ(got.keys, expected.keys) << "case " << r;
+    // Equal keys may come in either order (the walk's hit does not depend
+    // on it); distinct ones must come in the shader's.
+    std::vector<uint32_t> gotEntries = got.entries, expectedEntries = expected.entries;
+    for (size_t i = 0; i < got.keys.size(); ++i) {
+      const bool tied = (i > 0 && got.keys[i - 1] == got.keys[i]) ||
+                        (i + 1 < got.keys.size() && got.keys[i + 1] == got.keys[i]);
+      if (!tied) {
+        ASSERT_EQ(got.entries[i], expected.entries[i]) << "case " << r << ", entry " << i;
+      }
+    }
+    std::sort(gotEntries.begin(), gotEntries.end());
+    std::sort(expectedEntries.begin(), expectedEntries.end());
+    ASSERT_EQ(gotEntries, expectedEntries) << "case " << r;
+    ASSERT_EQ(prefetched, int(got.entries.size())) << "each child pushed is prefetched once";
+    pushedSomething += got.entries.empty() ? 0 : 1;
+    pushedSeveral += got.entries.size() > 1 ? 1 : 0;
+  }
+  EXPECT_GT(pushedSomething, 10000) << "the test must meet boxes";
+  EXPECT_GT(pushedSeveral, 2000) << "the test must order several children";
+}
+
+// A node whose four boxes are the same: four equal keys, all pushed.
+TEST_F(WalkSteps, EqualBoxesAreAllPushed) {
+  BvhNode node{};
+  for (int k = 0; k < 4; ++k) {
+    node.minX[k] = node.minY[k] = node.minZ[k] = 1.0f;
+    node.maxX[k] = node.maxY[k] = node.maxZ[k] = 2.0f;
+    node.child[k] = uint32_t(5 + k);
+  }
+  const Step got = vectorStep(vec3(0.0f), glm::normalize(vec3(1.0f)), node, 3.0e38f);
+  ASSERT_EQ(got.entries.size(), 4u);
+  for (float key : got.keys) EXPECT_EQ(key, got.keys[0]);
+  const Step expected = shaderStep(vec3(0.0f), glm::normalize(vec3(1.0f)), node, 3.0e38f);
+  EXPECT_EQ(got.keys, expected.keys);
+}
+
+}  // namespace
+}  // namespace spectrace::device
