@@ -33,11 +33,6 @@ inline FloatLanes lanesOf(const glm::vec4& v) {
   __builtin_memcpy(&lanes, &v, sizeof lanes);
   return lanes;
 }
-inline glm::vec4 vec4Of(FloatLanes lanes) {
-  glm::vec4 v;
-  __builtin_memcpy(&v, &lanes, sizeof lanes);
-  return v;
-}
 inline FloatLanes broadcast(float x) { return FloatLanes{x, x, x, x}; }
 // A lane of `ifTrue` where `mask` is set, else of `ifFalse` (a blend; GCC
 // and Clang both take it, where a vector ?: is GCC's alone).
