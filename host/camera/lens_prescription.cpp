@@ -123,11 +123,4 @@ std::optional<double> fNumber(const LensPrescription& lens, double lambdaNm) {
   return cardinal->focalLengthM * stop->second / (2.0 * lens.surfaces[stop->first].semiApertureM);
 }
 
-std::optional<double> stopSemiApertureForFNumber(const LensPrescription& lens, double n, double lambdaNm) {
-  const auto stop = stopAndHeightRatio(lens, lambdaNm);
-  const auto cardinal = paraxialCardinal(lens, lambdaNm);
-  if (!stop || !cardinal || !(cardinal->focalLengthM > 0.0) || !(n > 0.0)) return std::nullopt;
-  return cardinal->focalLengthM * stop->second / (2.0 * n);
-}
-
 }  // namespace spectrace

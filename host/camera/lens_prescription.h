@@ -83,7 +83,5 @@ std::optional<double> focusedBackThicknessM(const LensPrescription& lens, double
 // radius is the stop's semi-aperture over |a|. nullopt without one stop, a
 // positive focal length, or with a = 0.
 std::optional<double> fNumber(const LensPrescription& lens, double lambdaNm);
-// The stop's semi-aperture that gives f-number `n` (the inverse).
-std::optional<double> stopSemiApertureForFNumber(const LensPrescription& lens, double n, double lambdaNm);
 
 }  // namespace spectrace

@@ -283,13 +283,13 @@ void focus(const jf::Source& c, const std::string& focusPtr, LensPrescription& l
 // at infinity); a lens opens no wider than its own stop allows.
 void stopDown(const jf::Source& c, const std::string& ptr, LensPrescription& lens, double n) {
   const auto widest = fNumber(lens, kLineDNm);
-  const auto semiAperture = stopSemiApertureForFNumber(lens, n, kLineDNm);
-  if (!widest || !semiAperture) c.fail(ptr, "the lens forms no real image, so it has no f-number");
+  if (!widest) c.fail(ptr, "the lens forms no real image, so it has no f-number");
   if (n < *widest)
     c.fail(ptr, fmt::format("f/{} is wider than the lens opens: its stop allows f/{} at the widest", jf::fmtNum(n),
                             jf::fmtNum(std::round(*widest * 1000.0) / 1000.0)));
+  // The f-number is inversely proportional to the stop's semi-aperture.
   for (LensSurface& s : lens.surfaces)
-    if (s.stop) s.semiApertureM = *semiAperture;
+    if (s.stop) s.semiApertureM *= *widest / n;
 }
 
 LensSystem parseLens(const jf::Source& scene, const jf::Json& v, const std::string& ptr) {
