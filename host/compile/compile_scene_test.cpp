@@ -10,6 +10,7 @@
 
 #include "camera/pinhole_camera.h"
 #include "kernel/beam_kernel.h"
+#include "spectrum/wavelength_sampler.h"
 
 #include "scene/scene_builders.h"
 
@@ -146,6 +147,42 @@ TEST(AimedPlan, NoAimIsTheAnalogPlan) {
   EXPECT_EQ(plan.sampledPowerW, plan.tracedPowerW);
   EXPECT_FALSE(plan.film.weighted());
   EXPECT_EQ(plan.film.countersPerPixel(), plan.film.storedBins + 3u);
+}
+
+// Lights of one SPD share one spectral table and its alias columns; each
+// light still draws from a table equal, bit for bit, to its own.
+TEST(SpectralTables, LightsOfOneSpdShareOneTable) {
+  Scene scene = pinholeScene(0.05, 0.0005);
+  scene.lights = {pointLight({0.0, 0.0, 1.05}, 1.0, *cieIlluminant("D65")),
+                  pointLight({0.01, 0.0, 1.05}, 2.0, *cieIlluminant("A")),
+                  pointLight({0.0, 0.01, 1.05}, 3.0, *cieIlluminant("D65")),
+                  pointLight({0.01, 0.01, 1.05}, 1.0, *cieIlluminant("A"))};
+  const CompiledScene plan = compileScene(scene, 1);
+  const auto& lights = plan.device.lights;
+  ASSERT_EQ(lights.size(), 4u);
+  EXPECT_EQ(lights[2].spectralFirst, lights[0].spectralFirst);
+  EXPECT_EQ(lights[2].spectralAliasFirst, lights[0].spectralAliasFirst);
+  EXPECT_EQ(lights[3].spectralFirst, lights[1].spectralFirst);
+  EXPECT_EQ(lights[3].spectralAliasFirst, lights[1].spectralAliasFirst);
+  EXPECT_NE(lights[1].spectralFirst, lights[0].spectralFirst);
+  EXPECT_NE(lights[1].spectralAliasFirst, lights[0].spectralAliasFirst);
+  // Two tables stored, not four.
+  EXPECT_EQ(plan.device.intervals.size(), size_t(lights[0].spectralCount + lights[1].spectralCount));
+  // The alias columns: the light choice's (4 lights: 4 columns), then the
+  // two spectral tables'.
+  EXPECT_EQ(plan.device.aliasColumns.size(),
+            size_t(4 + (1u << lights[0].spectralAliasBits) + (1u << lights[1].spectralAliasBits)));
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const SpectralTable own = buildSpectralTable(scene.lights[l].spd.clipped(scene.spectrum.minNm, scene.spectrum.maxNm));
+    ASSERT_EQ(own.intervals.size(), lights[l].spectralCount) << "light " << l;
+    for (size_t i = 0; i < own.intervals.size(); ++i) {
+      const auto& stored = plan.device.intervals[lights[l].spectralFirst + i];
+      EXPECT_EQ(stored.cdfLow, own.intervals[i].cdfLow) << "light " << l << ", interval " << i;
+      EXPECT_EQ(stored.lambda0, own.intervals[i].lambda0) << "light " << l << ", interval " << i;
+      EXPECT_EQ(stored.width, own.intervals[i].width) << "light " << l << ", interval " << i;
+      EXPECT_EQ(stored.slope, own.intervals[i].slope) << "light " << l << ", interval " << i;
+    }
+  }
 }
 
 TEST(PixelWindow, HoldsEveryCountedBeamOfRandomScenes) {
