@@ -79,9 +79,9 @@ LightFrame lightFrame(const Light& light, const LightTypeUnit& unit, const Camer
 // Where `table` already lies in `intervals` as the whole table of an
 // earlier light (bit for bit, so the draws are the same), or the end of
 // `intervals` when it does not. Lights of one SPD (a row of lasers or
-// lamps) then share one table and its alias columns: the kernel reads the
-// same few lines for all of them instead of one copy per light, which
-// spread over more than the caches on a scene of 41 D65 lasers.
+// lamps) then share one table and its alias columns instead of one copy
+// per light (41 copies of D65 on the prism scene), so the tables stay small
+// enough for a device's uniform buffers (backend/uniform_tables.cpp).
 uint32_t sharedSpectralFirst(const std::vector<device::SpectralInterval>& intervals,
                              std::span<const device::LightRecord> lights, const SpectralTable& table) {
   static_assert(sizeof(device::SpectralInterval) == 24, "memcmp below compares padding-free records");
