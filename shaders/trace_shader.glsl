@@ -1,5 +1,5 @@
-// The trace shader's text (trace_beams.comp, trace_camera_paths.comp):
-// beam generation and counting, one invocation per path index, through the
+// The trace shader's text (trace_beams.comp, trace_camera_paths.comp, and
+// their bench-only *_profile.comp variants): beam generation and counting, one invocation per path index, through the
 // shared kernel (trace.h). Hits are counted with 64-bit integer atomics
 // (exact, order-independent; float atomics stop growing at 2^24).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -165,11 +165,20 @@ void addWideCount(uint chunk, uint index, WideCount amount) {
 }
 
 #include "trace.h"
-#include "profile.h"
 
-FN bool traceAndCountOrProfileBeam(uint64_t beamIndex) {
-  return profileStage == kProfileStageFull ? traceAndCountBeam(beamIndex) : profileBeam(beamIndex, profileStage);
-}
+// The path of `beamIndex`, noted in `tally`: the whole kernel, or in the
+// profile modules (trace_*_profile.comp, the bench's) the kernel cut after
+// profileStage. One call site, so the kernel is inlined once: lavapipe
+// inlines every call before it drops the branches that specialisation
+// constants rule out, and its compile time grows with what it inlined (a
+// second copy of the kernel for the profile and another for the beam
+// records took it from 0.8 to 2 s a pipeline, in every process).
+#ifdef SPECTRACE_WITH_PROFILE
+#include "profile.h"
+FN bool tracePath(uint64_t beamIndex, INOUT(BeamTally) tally) { return profileBeam(beamIndex, profileStage); }
+#else
+FN bool tracePath(uint64_t beamIndex, INOUT(BeamTally) tally) { return traceBeam(beamIndex, tally); }
+#endif
 
 // Counted beams of this workgroup, added to stats with one atomic. Not
 // needed when every counted beam adds one unit to its bin: the host sums the
@@ -185,13 +194,13 @@ void main() {
   uint local = gl_GlobalInvocationID.y * push.beamsPerRow + gl_GlobalInvocationID.x;
   if (local < push.beamCount) {
     uint64_t beamIndex = push.beamBase + uint64_t(local);
+    BeamTally tally = emptyTally();
+    bool hit = tracePath(beamIndex, tally);
     if (recordBeams != 0u) {
-      BeamTally tally = emptyTally();
-      bool hit = traceBeam(beamIndex, tally);
       beamRecords[local] = hit ? BeamRecord(pixelOfCell(tally.cell, constants.pixelsX), tally.bin, floatBitsToUint(tally.ratio),
                                             tally.contributions)
                                : BeamRecord(kBeamMissed, kBeamMissed, 0u, 0u);
-    } else if (traceAndCountOrProfileBeam(beamIndex) && countBeamsOnDevice != 0u) {
+    } else if (hit && countBeamsOnDevice != 0u) {
       atomicAdd(groupCounted, 1u);
     }
   }

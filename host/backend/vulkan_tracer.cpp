@@ -148,10 +148,14 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
 
 // The trace shader's module: with camera paths compiled in only where the
 // scene's estimators include them (trace_camera_paths.comp); lavapipe takes
-// several times as long to compile that one.
-std::span<const unsigned char> traceModule(const CompiledScene& plan) {
-  if (plan.device.constants.estimators & device::kEstimatorCameraPaths) return embedded::spv_trace_camera_paths();
-  return embedded::spv_trace_beams();
+// several times as long to compile that one. The bench's profile stages
+// have modules of their own (trace_*_profile.comp), so that a render's
+// module holds the kernel once.
+std::span<const unsigned char> traceModule(const CompiledScene& plan, uint32_t profileStage) {
+  const bool cameraPaths = (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0;
+  if (profileStage != device::kProfileStageFull)
+    return cameraPaths ? embedded::spv_trace_camera_paths_profile() : embedded::spv_trace_beams_profile();
+  return cameraPaths ? embedded::spv_trace_camera_paths() : embedded::spv_trace_beams();
 }
 
 // Whether the trace pass counts counted beams itself: only when beams carry
@@ -279,7 +283,7 @@ VulkanTracer::VulkanTracer(const vk_util::Context& context, const CompiledScene&
       histogramChunkBytes_(filmChunkBytes(plan.film, split_)),
       histogramChunks_(takeFilmChunks(context, histogramChunkBytes_, *buffers_)),
       firstClear_(std::async(std::launch::async, [this] { clear(); })),
-      tracePipeline_(context, traceModule(plan), bindingSpecs(device::kTraceBindings),
+      tracePipeline_(context, traceModule(plan, profileStage), bindingSpecs(device::kTraceBindings),
                      sizeof(device::TracePush), specConstants(workgroupSize, false, split_, countsBeamsOnDevice(plan), traceSpecialisation_)),
       resolvePipeline_(context, embedded::spv_resolve(), bindingSpecs(device::kResolveBindings),
                        sizeof(device::ResolvePush),
@@ -352,8 +356,9 @@ uint64_t VulkanTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::
 }
 
 std::vector<device::BeamRecord> VulkanTracer::traceRecorded(uint64_t firstBeam, uint32_t count) {
-  vk_util::ComputePipeline recorder(context_, traceModule(plan_), bindingSpecs(device::kTraceBindings),
-                                    sizeof(device::TracePush), specConstants(workgroupSize_, true, split_, countsBeamsOnDevice(plan_), traceSpecialisation_));
+  vk_util::ComputePipeline recorder(context_, traceModule(plan_, device::kProfileStageFull),
+                                    bindingSpecs(device::kTraceBindings), sizeof(device::TracePush),
+                                    specConstants(workgroupSize_, true, split_, countsBeamsOnDevice(plan_), traceSpecialisation_));
   Buffer records(context_, std::max<uint64_t>(uint64_t(count) * sizeof(device::BeamRecord), 16), {},
                  MemoryPlacement::HostVisible);
   bindTraceBuffers(recorder, records);  // the counters and stats are left untouched in record mode

@@ -1,0 +1,7 @@
+#version 460
+// trace_camera_paths.comp with the bench's cost profile (shaders/profile.h)
+// in place of the whole kernel; never used to render.
+#extension GL_GOOGLE_include_directive : require
+#define SPECTRACE_WITH_CAMERA_PATHS
+#define SPECTRACE_WITH_PROFILE
+#include "trace_shader.glsl"
