@@ -27,7 +27,12 @@
 # a counted beam (the larger image total over the fewer counted beams, from
 # the renders' own summary lines). A 25x unit widens every bound 5x over a
 # Poisson count of the mean weight; two tree renders of sphere_mesh at seeds
-# 1 and 2 differed by z = 4 in total with that unit at 1x.
+# 1 and 2 differed by z = 4 in total with that unit at 1x. The Y unit is
+# derived from that one, so it does not cover a base whose colour counters
+# are noisier than its irradiance counters: e500837 rounded each camera
+# connection's colour to whole fixed-point units, and room fails in Y in a
+# dim block against it while tree renders at two seeds agree (z < 0.5;
+# docs/benchmarks.md, "Rays through objects").
 #
 # Both binaries read the same scene files and do the same work: light paths
 # with one wavelength a beam, the base's only way (it has neither option), and
