@@ -1,7 +1,7 @@
 // The trace shader's modules as SPIR-V: a render's module calls the kernel
 // from one place and holds none of the bench's profile. Mesa's Vulkan
 // drivers inline every call before specialisation constants prune the
-// branches, so each more call site of the kernel is one more copy of it to
+// branches, so each further call site of the kernel is one more copy of it to
 // compile in every process (vulkan_tracer.cpp: traceModule).
 #include <gtest/gtest.h>
 
