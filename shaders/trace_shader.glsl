@@ -1,7 +1,8 @@
 // The trace shader's text (trace_beams.comp, trace_camera_paths.comp, and
-// their bench-only *_profile.comp variants): beam generation and counting, one invocation per path index, through the
-// shared kernel (trace.h). Hits are counted with 64-bit integer atomics
-// (exact, order-independent; float atomics stop growing at 2^24).
+// their bench-only *_profile.comp variants): beam generation and counting,
+// one invocation per path index, through the shared kernel (trace.h). Hits
+// are counted with 64-bit integer atomics (exact, order-independent; float
+// atomics stop growing at 2^24).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -168,11 +169,11 @@ void addWideCount(uint chunk, uint index, WideCount amount) {
 
 // The path of `beamIndex`, noted in `tally`: the whole kernel, or in the
 // profile modules (trace_*_profile.comp, the bench's) the kernel cut after
-// profileStage. One call site, so the kernel is inlined once: lavapipe
-// inlines every call before it drops the branches that specialisation
-// constants rule out, and its compile time grows with what it inlined (a
-// second copy of the kernel for the profile and another for the beam
-// records took it from 0.8 to 2 s a pipeline, in every process).
+// profileStage. One call site, so the kernel is inlined once: Mesa inlines
+// every call before it drops the branches that specialisation constants
+// rule out, and lavapipe's compile time grows with what it inlined (two
+// more copies of the kernel, for the profile and the beam records, cost
+// about 1 s in every process).
 #ifdef SPECTRACE_WITH_PROFILE
 #include "profile.h"
 FN bool tracePath(uint64_t beamIndex, INOUT(BeamTally) tally) { return profileBeam(beamIndex, profileStage); }
