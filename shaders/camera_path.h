@@ -167,7 +167,7 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
     at.facing = at.fromOutside ? n : -n;
     uvec4 words = philox4x32(constants.seed, pathIndex, kRngBlockCameraVertex + 2u * vertex);
     rounding = uniformFromWord(words.w);
-    if (material.type == kMaterialDiffuse) {
+    if (isMaterial(material, kMaterialDiffuse)) {
       WavelengthFactors rho = reflectancesAt(material, w);
       uvec4 objectWords = objectLight ? philox4x32(constants.seed, pathIndex, kRngBlockCameraEmitterPoint + vertex)
                                       : uvec4(0u, 0u, 0u, 0u);
@@ -179,9 +179,9 @@ FN void traceCameraPath(uint64_t pathIndex, INOUT(BeamTally) tally) {
       if (!surviveReflectance(rho, uniformFromWord(words.x), w)) return;
       bounceDiffusely(at, words, origin, direction);
       afterDiffuse = true;
-    } else if (material.type == kMaterialMirror) {
+    } else if (isMaterial(material, kMaterialMirror)) {
       if (!scatterMirror(material, at, words, w, origin, direction, afterDiffuse)) return;
-    } else if (material.type == kMaterialDielectric) {
+    } else if (isMaterial(material, kMaterialDielectric)) {
       scatterDielectric(material, at, words, w, origin, direction, afterDiffuse);
       // Radiance over the index squared is what crossing keeps: seen from
       // this side of the surface it is eta^2 (eta = this side's index over

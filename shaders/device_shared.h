@@ -127,7 +127,9 @@ START_BINDING(SpecConstantId)
   kSpecUniformCmfNodes = 13,
   kSpecUniformAliasColumns = 14,
   kSpecObjects = 15,         // 0: no scene objects (transport compiled out); 1: some; 2: run time
-  kSpecCameraPaths = 16      // 0: no camera paths (camera_path.h compiled out); 1: camera paths; 2: run time
+  kSpecCameraPaths = 16,     // 0: no camera paths (camera_path.h compiled out); 1: camera paths; 2: run time
+  kSpecPrimitiveTypes = 17,  // a bit per primitive type present (kAllPrimitiveTypes: run time)
+  kSpecMaterialTypes = 18    // a bit per material type present (kAllMaterialTypes: run time)
 END_BINDING();
 // Stages of the bench's cost profile (shaders/profile.h), each adding one
 // part of the kernel to the one before.
@@ -228,6 +230,8 @@ SPECTRACE_CONSTANT uint kPrimitiveTriangle = 0;  // a: vertex 0, b: vertex 1 - v
 SPECTRACE_CONSTANT uint kPrimitiveRect = 1;      // a: centre, b, c: half edges (b x c along the normal)
 SPECTRACE_CONSTANT uint kPrimitiveDisk = 2;      // a: centre, b: unit normal, c.x: radius^2
 SPECTRACE_CONSTANT uint kPrimitiveSphere = 3;    // a: centre, b.x: radius, b.y: radius^2
+SPECTRACE_CONSTANT uint kPrimitiveTypeCount = 4;
+SPECTRACE_CONSTANT uint kAllPrimitiveTypes = (1u << kPrimitiveTypeCount) - 1u;  // a bit per type
 struct Primitive {
   vec3 a;
   uint type;
@@ -304,6 +308,8 @@ SPECTRACE_CONSTANT uint kMaterialAbsorber = 0;
 SPECTRACE_CONSTANT uint kMaterialDiffuse = 1;
 SPECTRACE_CONSTANT uint kMaterialMirror = 2;
 SPECTRACE_CONSTANT uint kMaterialDielectric = 3;
+SPECTRACE_CONSTANT uint kMaterialTypeCount = 4;
+SPECTRACE_CONSTANT uint kAllMaterialTypes = (1u << kMaterialTypeCount) - 1u;  // a bit per type
 // A material. Reflectance (diffuse, mirror): linear between nodes
 // readSceneFloat(reflectanceFirst + i) at lambda0 + i / nodesPerNm, holding
 // its end values outside. Dielectric: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in micrometres

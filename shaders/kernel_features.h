@@ -27,6 +27,15 @@
 #define SPECTRACE_WEIGHTED (constants.weighted != 0u)  // weighted counts (device_shared.h)
 #endif
 
+// Whether the scene may hold primitives or materials of a type: a shader's
+// `if` runs on lavapipe for every lane, met or not, so a type's test left in
+// costs every beam that reaches the dispatch.
+#ifndef SPECTRACE_PRIMITIVE_ENABLED
+#define SPECTRACE_PRIMITIVE_ENABLED(type) true
+#endif
+#ifndef SPECTRACE_MATERIAL_ENABLED
+#define SPECTRACE_MATERIAL_ENABLED(type) true
+#endif
 #ifndef SPECTRACE_OBJECTS
 #define SPECTRACE_OBJECTS (constants.objectPrimitives > 0u)
 #endif

@@ -29,10 +29,11 @@ FN bool materialEndsEveryBeam(Material material) { return material.type == kMate
 FN bool scatterAtSurface(Material material, SurfaceHit hit, uvec4 words, uint64_t beamIndex, uint bounce, float ratio,
                          INOUT(PathWavelengths) w, INOUT(BeamTally) tally, INOUT(vec3) origin, INOUT(vec3) direction,
                          INOUT(bool) afterDiffuse) {
-  if (material.type == kMaterialDiffuse)
+  if (isMaterial(material, kMaterialDiffuse))
     return scatterDiffuse(material, hit, words, beamIndex, bounce, ratio, w, tally, origin, direction, afterDiffuse);
-  if (material.type == kMaterialMirror) return scatterMirror(material, hit, words, w, origin, direction, afterDiffuse);
-  if (material.type == kMaterialDielectric)
+  if (isMaterial(material, kMaterialMirror))
+    return scatterMirror(material, hit, words, w, origin, direction, afterDiffuse);
+  if (isMaterial(material, kMaterialDielectric))
     return scatterDielectric(material, hit, words, w, origin, direction, afterDiffuse);
   return false;
 }

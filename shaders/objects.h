@@ -33,10 +33,10 @@ FN ObjectHit noObjectHit() {
 // miss.
 FN float intersectPrimitive(vec3 origin, vec3 direction, Primitive p) {
   float t = -1.0f;
-  if (p.type == kPrimitiveTriangle) t = intersectTriangle(origin, direction, p);
-  else if (p.type == kPrimitiveRect) t = intersectRect(origin, direction, p);
-  else if (p.type == kPrimitiveDisk) t = intersectDisk(origin, direction, p);
-  else if (p.type == kPrimitiveSphere) t = intersectSphere(origin, direction, p);
+  if (isPrimitive(p, kPrimitiveTriangle)) t = intersectTriangle(origin, direction, p);
+  else if (isPrimitive(p, kPrimitiveRect)) t = intersectRect(origin, direction, p);
+  else if (isPrimitive(p, kPrimitiveDisk)) t = intersectDisk(origin, direction, p);
+  else if (isPrimitive(p, kPrimitiveSphere)) t = intersectSphere(origin, direction, p);
   return t;
 }
 
@@ -45,10 +45,10 @@ FN float intersectPrimitive(vec3 origin, vec3 direction, Primitive p) {
 // rects and disks.
 FN vec3 primitiveNormal(Primitive p, vec3 point) {
   vec3 n = vec3(0.0f, 0.0f, 0.0f);
-  if (p.type == kPrimitiveTriangle) n = triangleNormal(p);
-  else if (p.type == kPrimitiveRect) n = rectNormal(p);
-  else if (p.type == kPrimitiveDisk) n = diskNormal(p);
-  else if (p.type == kPrimitiveSphere) n = sphereNormal(p, point);
+  if (isPrimitive(p, kPrimitiveTriangle)) n = triangleNormal(p);
+  else if (isPrimitive(p, kPrimitiveRect)) n = rectNormal(p);
+  else if (isPrimitive(p, kPrimitiveDisk)) n = diskNormal(p);
+  else if (isPrimitive(p, kPrimitiveSphere)) n = sphereNormal(p, point);
   return n;
 }
 
@@ -59,10 +59,10 @@ FN vec3 primitiveNormal(Primitive p, vec3 point) {
 // own coordinates.
 FN vec3 pointOnSurface(Primitive p, vec3 point, vec3 n) {
   vec3 onSurface = point;
-  if (p.type == kPrimitiveTriangle) onSurface = triangleSurfacePoint(p, point, n);
-  else if (p.type == kPrimitiveRect) onSurface = rectSurfacePoint(p, point, n);
-  else if (p.type == kPrimitiveDisk) onSurface = diskSurfacePoint(p, point, n);
-  else if (p.type == kPrimitiveSphere) onSurface = sphereSurfacePoint(p, n);
+  if (isPrimitive(p, kPrimitiveTriangle)) onSurface = triangleSurfacePoint(p, point, n);
+  else if (isPrimitive(p, kPrimitiveRect)) onSurface = rectSurfacePoint(p, point, n);
+  else if (isPrimitive(p, kPrimitiveDisk)) onSurface = diskSurfacePoint(p, point, n);
+  else if (isPrimitive(p, kPrimitiveSphere)) onSurface = sphereSurfacePoint(p, n);
   return onSurface;
 }
 

@@ -26,6 +26,10 @@ layout(constant_id = kSpecCountBeams) const uint countBeamsOnDevice = 1u;
 // time. The host always sets the scene's value, the general pipeline too:
 // a scene without objects never reads the object buffers either way.
 layout(constant_id = kSpecObjects) const uint objectsMode = 2u;
+// A bit per primitive type and per material type present (objects.h,
+// material.h); the defaults keep every type.
+layout(constant_id = kSpecPrimitiveTypes) const uint enabledPrimitiveTypes = kAllPrimitiveTypes;
+layout(constant_id = kSpecMaterialTypes) const uint enabledMaterialTypes = kAllMaterialTypes;
 // Camera paths (camera_path.h): 0 none, 1 some, 2 decided at run time; the
 // host always sets the scene's value.
 layout(constant_id = kSpecCameraPaths) const uint cameraPathsMode = 2u;
@@ -45,6 +49,8 @@ layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageF
 #define SPECTRACE_CAMERA_PATHS false
 #endif
 #define SPECTRACE_OBJECTS (objectsMode == 2u ? constants.objectPrimitives > 0u : objectsMode == 1u)
+#define SPECTRACE_PRIMITIVE_ENABLED(type) ((enabledPrimitiveTypes & (1u << (type))) != 0u)
+#define SPECTRACE_MATERIAL_ENABLED(type) ((enabledMaterialTypes & (1u << (type))) != 0u)
 #define SPECTRACE_RECORDING (recordBeams != 0u)
 #define SPECTRACE_SINGLE_CHUNK (histogramChunks == 1u)
 

@@ -18,7 +18,10 @@ enum SpecialisedFeature : uint32_t {
   // like one it is fixed at compile time, and the general pipeline keeps
   // the storage-buffer path it is checked against.
   kSpecialiseUniformTables = 1u << 5,
-  kSpecialiseAll = (1u << 6) - 1,
+  // Code for absent primitive and material types compiled out (a shader's
+  // branches all run on lavapipe, taken or not).
+  kSpecialiseObjectTypes = 1u << 6,
+  kSpecialiseAll = (1u << 7) - 1,
 };
 
 }  // namespace spectrace

@@ -127,6 +127,10 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
     types |= 1u << light.type;
     aimed = aimed || light.aimed != 0;
   }
+  uint32_t primitiveTypes = 0;
+  for (const auto& primitive : plan.device.primitives) primitiveTypes |= 1u << primitive.type;
+  uint32_t materialTypes = 0;
+  for (const auto& material : plan.device.materials) materialTypes |= 1u << material.type;
   auto pick = [&](SpecialisedFeature f, uint32_t scene, uint32_t general) { return (features & f) ? scene : general; };
   return {{device::kSpecLightTypes, pick(kSpecialiseLightTypes, types, device::kAllLightTypes)},
           {device::kSpecSelectLight, pick(kSpecialiseLightChoice, plan.device.lights.size() > 1 ? 1u : 0u, 1u)},
@@ -143,7 +147,9 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
           {device::kSpecUniformCmfNodes, tables.cmfNodes},
           {device::kSpecUniformAliasColumns, tables.aliasColumns},
           {device::kSpecObjects, plan.device.primitives.empty() ? 0u : 1u},
-          {device::kSpecCameraPaths, (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0 ? 1u : 0u}};
+          {device::kSpecCameraPaths, (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0 ? 1u : 0u},
+          {device::kSpecPrimitiveTypes, pick(kSpecialiseObjectTypes, primitiveTypes, device::kAllPrimitiveTypes)},
+          {device::kSpecMaterialTypes, pick(kSpecialiseObjectTypes, materialTypes, device::kAllMaterialTypes)}};
 }
 
 // The trace shader's module: with camera paths compiled in only where the

@@ -294,7 +294,7 @@ std::vector<SpecialisationRow> runSpecialisation(const std::vector<DeviceSpec>& 
     scenes.emplace_back(name, loadScene(scenesDir / (std::string(name) + ".json")));
   std::vector<SpecialisationRow> rows;
   fmt::print("\nSpecialised pipelines (device time of the trace pass)\n");
-  fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}   gain of each alone (light types, choice, camera model, colour, aim)\n",
+  fmt::print("{:<26} {:>10} {:>16} {:>20} {:>8}   gain of each alone (light types, choice, camera model, colour, aim, uniform tables, object types)\n",
              "scene", "beams", "general Mbeam/s", "specialised Mbeam/s", "gain");
   for (const auto& device : devices) {
     if (!device.capabilities.specialisedPipelines || !device.capabilities.deviceTimestamps) continue;

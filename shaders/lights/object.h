@@ -30,10 +30,10 @@ FN vec3 objectLightPoint(LightRecord light, uint64_t aliasUniform, float u, floa
   Primitive p = readEmitterPrimitive(aliasFirst + 4u * (1u << aliasBits) + kPrimitiveWords * chosen);
   n = vec3(0.0f, 0.0f, 1.0f);
   vec3 point = p.a;
-  if (p.type == kPrimitiveTriangle) point = sampleTrianglePoint(p, u, v, n);
-  else if (p.type == kPrimitiveRect) point = sampleRectPoint(p, u, v, n);
-  else if (p.type == kPrimitiveDisk) point = sampleDiskPoint(p, u, v, n);
-  else if (p.type == kPrimitiveSphere) point = sampleSpherePoint(p, u, v, n);
+  if (isPrimitive(p, kPrimitiveTriangle)) point = sampleTrianglePoint(p, u, v, n);
+  else if (isPrimitive(p, kPrimitiveRect)) point = sampleRectPoint(p, u, v, n);
+  else if (isPrimitive(p, kPrimitiveDisk)) point = sampleDiskPoint(p, u, v, n);
+  else if (isPrimitive(p, kPrimitiveSphere)) point = sampleSpherePoint(p, u, v, n);
   return point;
 }
 

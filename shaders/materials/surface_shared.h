@@ -4,6 +4,10 @@
 #ifndef SPECTRACE_MATERIALS_SURFACE_SHARED_H
 #define SPECTRACE_MATERIALS_SURFACE_SHARED_H
 
+// Whether `m` is of `type` (kMaterial*); always false for a type the
+// pipeline was specialised without (kernel_features.h).
+FN bool isMaterial(Material m, uint type) { return SPECTRACE_MATERIAL_ENABLED(type) && m.type == type; }
+
 // A material's reflectance at a wavelength: linear between its table's
 // nodes, holding the end values outside.
 FN float reflectanceAt(Material m, float lambda) {

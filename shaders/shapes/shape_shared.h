@@ -4,6 +4,11 @@
 #ifndef SPECTRACE_SHAPES_SHAPE_SHARED_H
 #define SPECTRACE_SHAPES_SHAPE_SHARED_H
 
+// Whether `p` is of `type` (kPrimitive*); always false for a type the
+// pipeline was specialised without (kernel_features.h), so that type's
+// code is compiled out of each dispatch.
+FN bool isPrimitive(Primitive p, uint type) { return SPECTRACE_PRIMITIVE_ENABLED(type) && p.type == type; }
+
 FN vec3 unitNormal(vec3 n) {
   PRECISE vec3 unit = n * (1.0f / sqrt(dot3(n, n)));
   return unit;
