@@ -124,6 +124,12 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
   uint count = 0u;
   while (true) {
     if (count > 0u) {
+#ifdef SPECTRACE_CPU_WALK_STEP
+      // The CPU's lanes for a leaf of triangles, the same hit
+      // (host/kernel/wide_walk.h).
+      if (portableWalk || !nearestTriangleInLeaf(origin, direction, primitives.data() + child, child, count, hit.t,
+                                                 hit.primitive, found))
+#endif
       for (uint i = 0u; i < count; ++i) {
         uint primitive = child + i;
         float t = intersectPrimitive(origin, direction, readPrimitive(primitive));

@@ -19,6 +19,9 @@
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#ifdef __SSE__
+#include <xmmintrin.h>
+#endif
 
 #include "device_shared.h"
 
@@ -91,6 +94,89 @@ inline void pushChildrenMet(const glm::vec3& origin, const glm::vec3& inverse, c
     stackEnter[depth] = key[j];
     ++depth;
   }
+}
+
+// Four triangles' a, b and c as lanes: x, y and z of each (the Primitive
+// records' floats, word offsets 0, 4 and 8), for `leaf[index[k]]` in lane k.
+struct TriangleLanes {
+  FloatLanes ax, ay, az, bx, by, bz, cx, cy, cz;
+};
+
+inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4]) {
+  TriangleLanes lanes;
+  FloatLanes* rows[3][3] = {{&lanes.ax, &lanes.ay, &lanes.az},
+                            {&lanes.bx, &lanes.by, &lanes.bz},
+                            {&lanes.cx, &lanes.cy, &lanes.cz}};
+  for (int v = 0; v < 3; ++v) {
+#ifdef __SSE__
+    // Four records' rows, transposed in registers: a scalar fill of the
+    // lanes stalls on store forwarding.
+    const __m128 r0 = _mm_loadu_ps(reinterpret_cast<const float*>(leaf + index[0]) + 4 * v);
+    const __m128 r1 = _mm_loadu_ps(reinterpret_cast<const float*>(leaf + index[1]) + 4 * v);
+    const __m128 r2 = _mm_loadu_ps(reinterpret_cast<const float*>(leaf + index[2]) + 4 * v);
+    const __m128 r3 = _mm_loadu_ps(reinterpret_cast<const float*>(leaf + index[3]) + 4 * v);
+    const __m128 xy01 = _mm_unpacklo_ps(r0, r1), xy23 = _mm_unpacklo_ps(r2, r3);
+    const __m128 zw01 = _mm_unpackhi_ps(r0, r1), zw23 = _mm_unpackhi_ps(r2, r3);
+    *rows[v][0] = FloatLanes(_mm_movelh_ps(xy01, xy23));
+    *rows[v][1] = FloatLanes(_mm_movehl_ps(xy23, xy01));
+    *rows[v][2] = FloatLanes(_mm_movelh_ps(zw01, zw23));
+#else
+    for (int k = 0; k < 4; ++k) {
+      const Primitive& p = leaf[index[k]];
+      const glm::vec3& corner = v == 0 ? p.a : v == 1 ? p.b : p.c;
+      (*rows[v][0])[k] = corner.x;
+      (*rows[v][1])[k] = corner.y;
+      (*rows[v][2])[k] = corner.z;
+    }
+#endif
+  }
+  return lanes;
+}
+
+// objects.h's leaf loop on a leaf of triangles: the shader's
+// intersectTriangle (shapes/triangle.h) on four lanes at once, then its
+// choice of hit. A scalar walk mispredicts the test's two range checks for
+// about every other triangle; here they are masks.
+//
+// Exact: each lane does the shader's float operations in its order (dot3
+// and cross3 as beam_math.h writes them; no contraction), so u, v and t are
+// the same bits, and a lane that the shader would leave early is masked
+// out by the same comparisons. The hits are then taken in primitive order
+// by the shader's rule, so the result is the scalar loop's. Returns false,
+// touching nothing, where the leaf holds another type of primitive.
+inline bool nearestTriangleInLeaf(const glm::vec3& origin, const glm::vec3& direction, const Primitive* leaf,
+                                  uint32_t first, uint32_t count, float& hitT, uint32_t& hitPrimitive, bool& found) {
+  for (uint32_t i = 0; i < count; ++i)
+    if (leaf[i].type != kPrimitiveTriangle) return false;
+  const float dx = direction.x, dy = direction.y, dz = direction.z;
+  for (uint32_t group = 0; group < count; group += 4) {
+    // Lanes past the leaf's end repeat its last triangle, and are not read.
+    uint32_t index[4];
+    for (uint32_t k = 0; k < 4; ++k) index[k] = group + k < count ? group + k : count - 1u;
+    const TriangleLanes p = triangleLanes(leaf, index);
+    // pvec = cross3(direction, c); det = dot3(b, pvec).
+    const FloatLanes px = dy * p.cz - dz * p.cy, py = dz * p.cx - dx * p.cz, pz = dx * p.cy - dy * p.cx;
+    const FloatLanes det = p.bx * px + p.by * py + p.bz * pz;
+    const FloatLanes inverse = 1.0f / det;
+    // tvec = origin - a; u = dot3(tvec, pvec) * inverse.
+    const FloatLanes tx = origin.x - p.ax, ty = origin.y - p.ay, tz = origin.z - p.az;
+    const FloatLanes u = (tx * px + ty * py + tz * pz) * inverse;
+    // qvec = cross3(tvec, b); v = dot3(direction, qvec) * inverse.
+    const FloatLanes qx = ty * p.bz - tz * p.by, qy = tz * p.bx - tx * p.bz, qz = tx * p.by - ty * p.bx;
+    const FloatLanes v = (dx * qx + dy * qy + dz * qz) * inverse;
+    const FloatLanes t = (p.cx * qx + p.cy * qy + p.cz * qz) * inverse;
+    const MaskLanes met = (det != 0.0f) & (u >= 0.0f) & (u <= 1.0f) & (v >= 0.0f) & (u + v <= 1.0f) & (t > 0.0f);
+    for (uint32_t k = 0; k < 4 && group + k < count; ++k) {
+      if (!met[k]) continue;
+      const uint32_t primitive = first + group + k;
+      if (t[k] < hitT || (found && t[k] == hitT && primitive < hitPrimitive)) {
+        hitT = t[k];
+        hitPrimitive = primitive;
+        found = true;
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace spectrace::device

@@ -195,5 +195,110 @@ TEST_F(WalkSteps, EqualBoxesAreAllPushed) {
   EXPECT_EQ(got.keys, expected.keys);
 }
 
+// objects.h's leaf loop, as the shader runs it: each primitive's test, then
+// the rule that keeps the nearest (the lowest index of equal distances).
+struct LeafHit {
+  float t;
+  uint32_t primitive;
+  bool found;
+  bool operator==(const LeafHit&) const = default;
+};
+
+LeafHit shaderLeaf(BeamKernel& kernel, const vec3& origin, const vec3& direction, const std::vector<Primitive>& leaf,
+                   uint32_t first, LeafHit hit) {
+  for (uint32_t i = 0; i < leaf.size(); ++i) {
+    const float t = kernel.intersectPrimitive(origin, direction, leaf[i]);
+    const uint32_t primitive = first + i;
+    if (t > 0.0f && (t < hit.t || (hit.found && t == hit.t && primitive < hit.primitive))) hit = {t, primitive, true};
+  }
+  return hit;
+}
+
+Primitive triangle(const vec3& a, const vec3& b, const vec3& c) {
+  Primitive p{};
+  p.type = kPrimitiveTriangle;
+  p.a = a;
+  p.b = b - a;
+  p.c = c - a;
+  return p;
+}
+
+// The lanes' leaf against the shader's, bit for bit, on leaves of one to
+// eight triangles: random ones, and a fan about one vertex with the ray
+// through the vertex or along a shared edge (equal distances on several
+// triangles, where the lowest index must win), degenerate triangles
+// (det == 0), duplicates, and earlier hits nearer, farther and equal.
+TEST_F(WalkSteps, TriangleLanesGiveTheShadersLeafHit) {
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<float> coordinate(-2.0f, 2.0f);
+  std::uniform_int_distribution<int> sizes(1, 8), kinds(0, 5);
+  int hits = 0, ties = 0;
+  for (int r = 0; r < 30000; ++r) {
+    const int n = sizes(rng);
+    const int kind = kinds(rng);
+    std::vector<Primitive> leaf;
+    const vec3 centre(coordinate(rng), coordinate(rng), coordinate(rng));
+    for (int i = 0; i < n; ++i) {
+      const vec3 a(coordinate(rng), coordinate(rng), coordinate(rng));
+      const vec3 b(coordinate(rng), coordinate(rng), coordinate(rng));
+      vec3 c(coordinate(rng), coordinate(rng), coordinate(rng));
+      if (kind == 1) {  // a fan: every triangle has the vertex `centre`
+        leaf.push_back(triangle(centre, a, b));
+        continue;
+      }
+      if (kind == 2 && i % 3 == 2) c = a + 2.0f * (b - a);  // collinear: det == 0
+      if (kind == 3 && i > 0 && i % 2 == 1) {
+        leaf.push_back(leaf.back());  // a duplicate: the same distance
+        continue;
+      }
+      leaf.push_back(triangle(a, b, c));
+    }
+    vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng));
+    origin *= 3.0f;
+    vec3 target = kind == 1 && r % 2 == 0 ? centre  // through the shared vertex
+                                          : leaf[r % n].a + 0.5f * leaf[r % n].b + (r % 3) * 0.25f * leaf[r % n].c;
+    if (kind == 4) target = leaf[r % n].a + 0.5f * leaf[r % n].b;  // on an edge
+    const vec3 direction = r % 7 == 0 ? randomDirection(rng) : glm::normalize(target - origin);
+    const uint32_t first = uint32_t(r % 1000);
+    // The hit so far: none, or nearer, farther or at the same distance as
+    // this leaf's own.
+    LeafHit before{3.0e38f, 0u, false};
+    const LeafHit alone = shaderLeaf(kernel_, origin, direction, leaf, first, before);
+    if (alone.found && kind != 5) {
+      const int which = r % 4;
+      if (which == 1) before = {alone.t * 0.5f, first + 3u, true};
+      if (which == 2) before = {alone.t * 2.0f, first + 1000u, true};
+      if (which == 3) before = {alone.t, r % 2 == 0 ? first + 1000u : (first > 0 ? first - 1u : 0u), true};
+    }
+    const LeafHit expected = shaderLeaf(kernel_, origin, direction, leaf, first, before);
+    LeafHit got = before;
+    ASSERT_TRUE(nearestTriangleInLeaf(origin, direction, leaf.data(), first, uint32_t(n), got.t, got.primitive,
+                                      got.found));
+    ASSERT_EQ(std::bit_cast<uint32_t>(got.t), std::bit_cast<uint32_t>(expected.t)) << "case " << r;
+    ASSERT_EQ(got.primitive, expected.primitive) << "case " << r;
+    ASSERT_EQ(got.found, expected.found) << "case " << r;
+    hits += expected.found && expected.primitive != before.primitive ? 1 : 0;
+    int equal = 0;
+    for (int i = 0; i < n; ++i)
+      equal += kernel_.intersectPrimitive(origin, direction, leaf[i]) == expected.t && expected.found ? 1 : 0;
+    ties += equal > 1 ? 1 : 0;
+  }
+  EXPECT_GT(hits, 8000) << "the test must hit triangles";
+  EXPECT_GT(ties, 1000) << "the test must meet equal distances";
+}
+
+// A leaf that holds another primitive is left to the shader's loop.
+TEST_F(WalkSteps, TriangleLanesDeclineOtherPrimitives) {
+  std::vector<Primitive> leaf = {triangle(vec3(0, 0, 1), vec3(1, 0, 1), vec3(0, 1, 1)), Primitive{}};
+  leaf[1].type = kPrimitiveSphere;
+  float t = 3.0e38f;
+  uint32_t primitive = 7u;
+  bool found = false;
+  EXPECT_FALSE(nearestTriangleInLeaf(vec3(0.1f, 0.1f, 0.0f), vec3(0, 0, 1), leaf.data(), 0u, 2u, t, primitive, found));
+  EXPECT_EQ(t, 3.0e38f);
+  EXPECT_EQ(primitive, 7u);
+  EXPECT_FALSE(found);
+}
+
 }  // namespace
 }  // namespace spectrace::device
