@@ -40,6 +40,12 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
                       float spareUniform, bool diffuseFirstIsCameras, INOUT(BeamTally) tally) {
   bool connect = constants.connect != 0u;
   bool afterDiffuse = false;
+  // The count is made after the loop, where the beam leaves it for the
+  // camera: lavapipe runs a loop's every branch on every pass, so a count
+  // inside would cost each bounce of every beam.
+  bool countIt = false;
+  uvec2 countCell = uvec2(0u, 0u);
+  float countTransmission = 1.0f;
   for (uint bounce = 0u; bounce <= constants.maxBounces; ++bounce) {
     ObjectHit hit;
     bool metObject = intersectObjects(origin, direction, 3.0e38f, false, hit);
@@ -50,9 +56,10 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     if (toCamera >= 0.0f && (!metObject || toCamera <= hit.t)) {
       // A beam straight from a diffuse vertex is the connection's (counted
       // there), so analog counts take the others only.
-      if (counted && ratio > 0.0f && !(connect && afterDiffuse))
-        countAtCamera(beamIndex, cell, transmission, w, ratio, spareUniform, tally);
-      return;
+      countIt = counted && ratio > 0.0f && !(connect && afterDiffuse);
+      countCell = cell;
+      countTransmission = transmission;
+      break;
     }
     if (!metObject || bounce == constants.maxBounces) return;
     Primitive surface = readPrimitive(hit.primitive);
@@ -69,6 +76,7 @@ FN void transportBeam(uint64_t beamIndex, vec3 origin, vec3 direction, float rat
     if (!scatterAtSurface(material, at, words, beamIndex, bounce, ratio, w, tally, origin, direction, afterDiffuse))
       return;
   }
+  if (countIt) countAtCamera(beamIndex, countCell, countTransmission, w, ratio, spareUniform, tally);
 }
 
 #endif  // SPECTRACE_TRANSPORT_H
