@@ -54,7 +54,12 @@ START_BINDING(TraceBinding)
   kBindingPrimitives = 12,   // Primitive, in the BVH's leaf order
   kBindingBvhNodes = 13,     // BvhNode, depth first, the root at 0
   kBindingMaterials = 14,    // Material
-  kBindingSceneData = 15     // the scene data: 32-bit words, offset-addressed (below)
+  kBindingSceneData = 15,    // the scene data: 32-bit words, offset-addressed (below)
+  // The first three as uniform buffers, read instead when kSpecUniformObjects
+  // is 1 (host/backend/uniform_tables.h: small scenes, such as a prism).
+  kBindingPrimitivesUniform = 16,
+  kBindingBvhNodesUniform = 17,
+  kBindingMaterialsUniform = 18
 END_BINDING();
 START_BINDING(ResolveBinding)
   kBindingResolveConstants = 0,
@@ -129,7 +134,12 @@ START_BINDING(SpecConstantId)
   kSpecObjects = 15,         // 0: no scene objects (transport compiled out); 1: some; 2: run time
   kSpecCameraPaths = 16,     // 0: no camera paths (camera_path.h compiled out); 1: camera paths; 2: run time
   kSpecPrimitiveTypes = 17,  // a bit per primitive type present (kAllPrimitiveTypes: run time)
-  kSpecMaterialTypes = 18    // a bit per material type present (kAllMaterialTypes: run time)
+  kSpecMaterialTypes = 18,   // a bit per material type present (kAllMaterialTypes: run time)
+  kSpecUniformObjects = 19,  // 1: read primitives, BVH nodes and materials from their uniform buffers
+  // Element counts of the uniform object tables' arrays (1 when unused).
+  kSpecUniformPrimitives = 20,
+  kSpecUniformBvhNodes = 21,
+  kSpecUniformMaterials = 22
 END_BINDING();
 // Stages of the bench's cost profile (shaders/profile.h), each adding one
 // part of the kernel to the one before.
@@ -594,7 +604,18 @@ inline constexpr BindingSlot kTraceBindings[] = {
     {kBindingPrimitives, 1},
     {kBindingBvhNodes, 1},
     {kBindingMaterials, 1},
-    {kBindingSceneData, 1}};
+    {kBindingSceneData, 1},
+    {kBindingPrimitivesUniform, 1, true},
+    {kBindingBvhNodesUniform, 1, true},
+    {kBindingMaterialsUniform, 1, true}};
+// Every device has at least 12 uniform buffers a stage (the Vulkan
+// minimum of maxPerStageDescriptorUniformBuffers), so this layout needs no
+// query.
+static_assert([] {
+  uint32_t uniformBuffers = 0;
+  for (const BindingSlot& slot : kTraceBindings) uniformBuffers += slot.uniform ? slot.count : 0u;
+  return uniformBuffers <= 12u;
+}());
 inline constexpr BindingSlot kCeilingBindings[] = {{kBindingCeilingCdf, 1}, {kBindingCeilingHistogram, 1}};
 inline constexpr BindingSlot kResolveBindings[] = {{kBindingResolveConstants, 1},
                                                    {kBindingBinWeights, 1},

@@ -109,6 +109,22 @@ layout(set = 0, binding = kBindingMaterials, scalar) readonly buffer MaterialBlo
 layout(set = 0, binding = kBindingSceneData, scalar) readonly buffer SceneDataBlock {
   uint sceneData[];
 };
+// The objects again as uniform buffers, read instead when uniformObjects is
+// 1: lavapipe loads a storage buffer lane by lane, a pass over the lanes
+// for each word of a 32-word BVH node, and gathers a uniform buffer's.
+layout(constant_id = kSpecUniformObjects) const uint uniformObjects = 0u;
+layout(constant_id = kSpecUniformPrimitives) const uint uniformPrimitiveCount = 1u;
+layout(constant_id = kSpecUniformBvhNodes) const uint uniformBvhNodeCount = 1u;
+layout(constant_id = kSpecUniformMaterials) const uint uniformMaterialCount = 1u;
+layout(set = 0, binding = kBindingPrimitivesUniform, scalar) uniform PrimitiveUniformBlock {
+  Primitive uniformPrimitives[uniformPrimitiveCount];
+};
+layout(set = 0, binding = kBindingBvhNodesUniform, scalar) uniform BvhUniformBlock {
+  BvhNode uniformBvhNodes[uniformBvhNodeCount];
+};
+layout(set = 0, binding = kBindingMaterialsUniform, scalar) uniform MaterialUniformBlock {
+  Material uniformMaterials[uniformMaterialCount];
+};
 layout(set = 0, binding = kBindingTraceStats, scalar) buffer TraceStatsBlock {
   TraceStats stats;
 };
@@ -136,11 +152,20 @@ vec3 readCmf(uint i) {
   if (uniformTables != 0u) return uniformCmfTable[i];
   return cmfTable[i];
 }
-Primitive readPrimitive(uint i) { return primitives[i]; }
-BvhNode readBvhNode(uint i) { return bvhNodes[i]; }
+Primitive readPrimitive(uint i) {
+  if (uniformObjects != 0u) return uniformPrimitives[i];
+  return primitives[i];
+}
+BvhNode readBvhNode(uint i) {
+  if (uniformObjects != 0u) return uniformBvhNodes[i];
+  return bvhNodes[i];
+}
 // GLSL has no prefetch; a GPU hides latency with other invocations.
 void prefetchBvhChild(uint child, uint count) {}
-Material readMaterial(uint i) { return materials[i]; }
+Material readMaterial(uint i) {
+  if (uniformObjects != 0u) return uniformMaterials[i];
+  return materials[i];
+}
 uint readSceneWord(uint i) { return sceneData[i]; }
 // Constant indices only: no non-uniform descriptor indexing needed. With
 // one chunk there is no switch: on lavapipe each case of a divergent switch

@@ -24,7 +24,23 @@ UniformTableLayout uniformTableLayout(const DeviceScene& tables, uint64_t maxUni
   const uint64_t bytes[] = {candidate.lightBytes(), candidate.intervalBytes(), candidate.cmfBytes(),
                             candidate.aliasColumnBytes()};
   const bool fits = std::all_of(std::begin(bytes), std::end(bytes), [&](uint64_t b) { return b <= maxUniformBufferRange; });
-  return fits ? candidate : layout;
+  if (fits) layout = candidate;
+  if (!tables.primitives.empty()) {
+    const uint32_t primitives = arrayLength(tables.primitives.size());
+    const uint32_t bvhNodes = arrayLength(tables.bvhNodes.size());
+    const uint32_t materials = arrayLength(tables.materials.size());
+    const uint64_t objectBytes[] = {uint64_t(primitives) * sizeof(device::Primitive),
+                                    uint64_t(bvhNodes) * sizeof(device::BvhNode),
+                                    uint64_t(materials) * sizeof(device::Material)};
+    if (std::all_of(std::begin(objectBytes), std::end(objectBytes),
+                    [&](uint64_t b) { return b <= maxUniformBufferRange; })) {
+      layout.objectsInUniform = true;
+      layout.primitives = primitives;
+      layout.bvhNodes = bvhNodes;
+      layout.materials = materials;
+    }
+  }
+  return layout;
 }
 
 }  // namespace spectrace

@@ -8,7 +8,7 @@
 // Valid when every table fits the device's maxUniformBufferRange, with its
 // element count rounded up to a power of two (so scenes of similar size
 // share one compiled pipeline in a batch); this function is the one place
-// that checks it. Otherwise, and in the general pipeline, the tables are
+// that checks it, for the tables and for the objects apart. Otherwise, and in the general pipeline, the tables are
 // read from their storage buffers. uniform_tables_test and
 // tests/render_test.cpp check both paths bit for bit against each other.
 #include <cstdint>
@@ -27,6 +27,14 @@ struct UniformTableLayout {
   uint64_t intervalBytes() const { return uint64_t(intervals) * sizeof(device::SpectralInterval); }
   uint64_t cmfBytes() const { return uint64_t(cmfNodes) * sizeof(glm::vec3); }
   uint64_t aliasColumnBytes() const { return uint64_t(aliasColumns) * sizeof(device::AliasColumn); }
+
+  // The scene's objects, the same way, on their own: a scene of a few
+  // primitives (a prism, a room of boxes) fits where a mesh does not.
+  bool objectsInUniform = false;
+  uint32_t primitives = 1, bvhNodes = 1, materials = 1;
+  uint64_t primitiveBytes() const { return uint64_t(primitives) * sizeof(device::Primitive); }
+  uint64_t bvhNodeBytes() const { return uint64_t(bvhNodes) * sizeof(device::BvhNode); }
+  uint64_t materialBytes() const { return uint64_t(materials) * sizeof(device::Material); }
 };
 
 // `wanted`: the pipeline asks for uniform tables (kSpecialiseUniformTables).

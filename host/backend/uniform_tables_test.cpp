@@ -47,6 +47,38 @@ TEST(UniformTables, TheGeneralPipelineAsksForNone) {
   EXPECT_FALSE(uniformTableLayout(tablesOf(1, 10, 95, 16), 65536, false).inUniform);
 }
 
+DeviceScene objectsOf(size_t primitives, size_t bvhNodes, size_t materials) {
+  DeviceScene scene = tablesOf(1, 10, 95, 16);
+  scene.primitives.resize(primitives);
+  scene.bvhNodes.resize(bvhNodes);
+  scene.materials.resize(materials);
+  return scene;
+}
+
+TEST(UniformTables, SmallObjectsGoToUniformBuffersOnTheirOwn) {
+  // A prism: 8 triangles, a few nodes, one material.
+  const UniformTableLayout prism = uniformTableLayout(objectsOf(8, 3, 1), 65536, true);
+  EXPECT_TRUE(prism.inUniform);
+  EXPECT_TRUE(prism.objectsInUniform);
+  EXPECT_EQ(prism.primitives, 8u);
+  EXPECT_EQ(prism.bvhNodes, 4u);
+  EXPECT_EQ(prism.materials, 1u);
+  // 1024 primitives of 48 bytes (48 KiB) fit 64 KiB; 2048 do not, and
+  // the objects stay in storage while the tables still go uniform.
+  EXPECT_TRUE(uniformTableLayout(objectsOf(1024, 300, 2), 65536, true).objectsInUniform);
+  const UniformTableLayout mesh = uniformTableLayout(objectsOf(2000, 700, 2), 65536, true);
+  EXPECT_TRUE(mesh.inUniform);
+  EXPECT_FALSE(mesh.objectsInUniform);
+  EXPECT_EQ(mesh.primitives, 1u);
+  EXPECT_EQ(mesh.bvhNodes, 1u);
+  // 512 nodes of 128 bytes are exactly 64 KiB; 513 round up to 1024.
+  EXPECT_TRUE(uniformTableLayout(objectsOf(16, 512, 1), 65536, true).objectsInUniform);
+  EXPECT_FALSE(uniformTableLayout(objectsOf(16, 513, 1), 65536, true).objectsInUniform);
+  // Nothing to read without objects, and nothing in the general pipeline.
+  EXPECT_FALSE(uniformTableLayout(objectsOf(0, 0, 0), 65536, true).objectsInUniform);
+  EXPECT_FALSE(uniformTableLayout(objectsOf(8, 3, 1), 65536, false).objectsInUniform);
+}
+
 TEST(UniformTables, PaddingAppendsZeroElementsOnly) {
   const std::vector<int> padded = paddedTable(std::vector<int>{7, 8, 9}, 4);
   EXPECT_EQ(padded, (std::vector<int>{7, 8, 9, 0}));
@@ -71,6 +103,52 @@ TEST(UniformTables, UniformAndStorageTablesGiveTheSameFilm) {
   VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
   uniform.trace(0, 300'000);
   storage.trace(0, 300'000);
+  const SpectralHistogram a = uniform.download();
+  const SpectralHistogram b = storage.download();
+  EXPECT_GT(a.countedBeams, 1000u);
+  EXPECT_EQ(a.countedBeams, b.countedBeams);
+  EXPECT_EQ(a.counts(), b.counts());
+}
+
+// Objects of two primitive types and two materials (a diffuse sphere and a
+// mirror plate) before a pinhole: the beams that reach it walked the BVH
+// and read the primitives and materials from the uniform buffers in one
+// film, from the storage buffers in the other.
+TEST(UniformTables, UniformAndStorageObjectsGiveTheSameFilm) {
+  Scene scene = bareSensorScene(0.024, 0.024, 16, 16, 16);
+  scene.camera.model = pinholeModel({0.04, 0.002});
+  Light spot = surfaceLight(LightType::Spot, {0.3, 0.3, 0.5}, glm::normalize(glm::dvec3(-0.3, -0.3, 0.5)), 5.0,
+                            *cieIlluminant("D65"));
+  spot.coneHalfAngleDeg = 30.0;
+  scene.lights = {spot};
+  SceneObject ball;
+  ball.label = "/objects/0";
+  ball.shape.type = ShapeType::Sphere;
+  ball.shape.center = {0.0, 0.0, 1.0};
+  ball.shape.radiusM = 0.15;
+  ball.shape.closed = true;
+  ball.material.type = MaterialType::Diffuse;
+  ball.material.reflectanceNm = {400.0, 700.0};
+  ball.material.reflectance = {0.2, 0.8};
+  SceneObject plate;
+  plate.label = "/objects/1";
+  plate.shape.type = ShapeType::Rect;
+  plate.shape.center = {0.0, -0.2, 1.0};
+  plate.shape.normal = glm::normalize(glm::dvec3(0.0, 1.0, -0.5));
+  plate.shape.uAxis = {1.0, 0.0, 0.0};
+  plate.shape.sizeM = {0.6, 0.3};
+  plate.material.type = MaterialType::Mirror;
+  plate.material.reflectanceNm = {550.0};
+  plate.material.reflectance = {0.9};
+  scene.objects = {ball, plate};
+  const CompiledScene plan = compileScene(scene, 11);
+  const UniformTableLayout layout =
+      uniformTableLayout(plan.device, testing::sharedVulkan().info().maxUniformBufferRange, true);
+  ASSERT_TRUE(layout.objectsInUniform);
+  VulkanTracer uniform(testing::sharedVulkan(), plan, 64, kSpecialiseUniformTables);
+  VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
+  uniform.trace(0, 200'000);
+  storage.trace(0, 200'000);
   const SpectralHistogram a = uniform.download();
   const SpectralHistogram b = storage.download();
   EXPECT_GT(a.countedBeams, 1000u);

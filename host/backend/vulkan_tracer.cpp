@@ -43,27 +43,38 @@ SceneTableBuffer tableBuffer(TracerBufferPool& pool, const vk_util::Context& con
           uniformBinding, uniformBytes};
 }
 
+// tableBuffer of `data` padded to `length` elements (a copy only where
+// padding is needed: a mesh's tables are tens of MB).
+template <typename T>
+SceneTableBuffer paddedTableBuffer(TracerBufferPool& pool, const vk_util::Context& context,
+                                   device::TraceBinding binding, const std::string& role, const std::vector<T>& data,
+                                   uint32_t length, device::TraceBinding uniformBinding, vk::DeviceSize uniformBytes) {
+  if (data.size() >= length) return tableBuffer(pool, context, binding, role, data, uniformBinding, uniformBytes);
+  return tableBuffer(pool, context, binding, role, paddedTable(data, length), uniformBinding, uniformBytes);
+}
+
 // The scene's tables, the one list: what each holds and where it is bound.
-// Scene objects' tables are 16-byte stand-ins when there are none. A new
+// Scene objects' tables hold one zero element when there are none. A new
 // kind of data for the kernel belongs in the scene data (no new binding).
 std::vector<SceneTableBuffer> sceneTableBuffers(TracerBufferPool& pool, const vk_util::Context& context,
                                                 const CompiledScene& plan, const UniformTableLayout& uniform) {
   using namespace device;
   const DeviceScene& s = plan.device;
   std::vector<SceneTableBuffer> tables;
-  tables.push_back(tableBuffer(pool, context, kBindingLights, "lights", paddedTable(s.lights, uniform.lights),
-                               kBindingLightsUniform, uniform.lightBytes()));
-  tables.push_back(tableBuffer(pool, context, kBindingSpectralIntervals, "intervals",
-                               paddedTable(s.intervals, uniform.intervals), kBindingSpectralIntervalsUniform,
-                               uniform.intervalBytes()));
-  tables.push_back(tableBuffer(pool, context, kBindingAliasColumns, "alias columns",
-                               paddedTable(s.aliasColumns, uniform.aliasColumns), kBindingAliasColumnsUniform,
-                               uniform.aliasColumnBytes()));
-  tables.push_back(tableBuffer(pool, context, kBindingCmfTable, "cmf table", paddedTable(s.cmfTable, uniform.cmfNodes),
-                               kBindingCmfTableUniform, uniform.cmfBytes()));
-  tables.push_back(tableBuffer(pool, context, kBindingPrimitives, "primitives", s.primitives));
-  tables.push_back(tableBuffer(pool, context, kBindingBvhNodes, "bvh nodes", s.bvhNodes));
-  tables.push_back(tableBuffer(pool, context, kBindingMaterials, "materials", s.materials));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingLights, "lights", s.lights, uniform.lights,
+                                     kBindingLightsUniform, uniform.lightBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingSpectralIntervals, "intervals", s.intervals,
+                                     uniform.intervals, kBindingSpectralIntervalsUniform, uniform.intervalBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingAliasColumns, "alias columns", s.aliasColumns,
+                                     uniform.aliasColumns, kBindingAliasColumnsUniform, uniform.aliasColumnBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingCmfTable, "cmf table", s.cmfTable, uniform.cmfNodes,
+                                     kBindingCmfTableUniform, uniform.cmfBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingPrimitives, "primitives", s.primitives, uniform.primitives,
+                                     kBindingPrimitivesUniform, uniform.primitiveBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingBvhNodes, "bvh nodes", s.bvhNodes, uniform.bvhNodes,
+                                     kBindingBvhNodesUniform, uniform.bvhNodeBytes()));
+  tables.push_back(paddedTableBuffer(pool, context, kBindingMaterials, "materials", s.materials, uniform.materials,
+                                     kBindingMaterialsUniform, uniform.materialBytes()));
   tables.push_back(tableBuffer(pool, context, kBindingSceneData, "scene data", s.data.words()));
   return tables;
 }
@@ -146,6 +157,10 @@ std::vector<vk_util::SpecConstant> traceSpecialisation(const CompiledScene& plan
           {device::kSpecUniformIntervals, tables.intervals},
           {device::kSpecUniformCmfNodes, tables.cmfNodes},
           {device::kSpecUniformAliasColumns, tables.aliasColumns},
+          {device::kSpecUniformObjects, tables.objectsInUniform ? 1u : 0u},
+          {device::kSpecUniformPrimitives, tables.primitives},
+          {device::kSpecUniformBvhNodes, tables.bvhNodes},
+          {device::kSpecUniformMaterials, tables.materials},
           {device::kSpecObjects, plan.device.primitives.empty() ? 0u : 1u},
           {device::kSpecCameraPaths, (plan.device.constants.estimators & device::kEstimatorCameraPaths) != 0 ? 1u : 0u},
           {device::kSpecPrimitiveTypes, pick(kSpecialiseObjectTypes, primitiveTypes, device::kAllPrimitiveTypes)},

@@ -1,8 +1,10 @@
 #pragma once
-// The CPU instance's own step of the shared kernel's BVH walk
-// (shaders/objects.h: intersectObjects, at a node): the ray against the
-// node's four child boxes on one vector register, then the children met
-// pushed far to near by a short insertion among those met. The shader's
+// The CPU instance's own steps of the shared kernel's BVH walk
+// (shaders/objects.h: intersectObjects): at a leaf of triangles, four of
+// them tested on the lanes of one register (nearestTriangleInLeaf, below);
+// at a node, the ray against the node's four child boxes on one vector
+// register, then the children met pushed far to near by a short insertion
+// among those met. The shader's
 // step, compiled as C++, is scalar (GCC does not vectorise its vec4 lanes)
 // and runs the fixed sorting network that keeps a GPU's lanes together, so
 // a CPU thread paid for both; this step traces the ray ceiling's incoherent
