@@ -453,7 +453,9 @@ struct TraceConstants {
   // area over the aperture distance squared (m^2; camera_path.h).
   float cameraPathScale;
   uint wavelengthsPerPath;  // k: the wavelengths a beam or camera path carries (wavelengths.h)
-  uint padding2;
+  // > 0: the BVH is one leaf of the primitives [0, bvhRootLeaf) under the
+  // root (compile/wide_bvh.h: rootLeafCount), and walks start at it.
+  uint bvhRootLeaf;
 };
 
 // The film's channels, defined only here: each stored pixel owns

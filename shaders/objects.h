@@ -120,8 +120,8 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
   uint stackEntry[kBvhStackSize];  // child << kBvhCountBits | count
   float stackEnter[kBvhStackSize];
   uint depth = 0u;
-  uint child = 0u;  // the root
-  uint count = 0u;
+  uint child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
+  uint count = constants.bvhRootLeaf;
   while (true) {
     if (count > 0u) {
 #ifdef SPECTRACE_CPU_WALK_STEP

@@ -67,6 +67,7 @@ void compileObjects(const Scene& scene, const CompileOptions& options, DeviceSce
     BuiltBvh binary = buildBvh(bounds);
     device.bvhNodes = widenBvh(binary).nodes;
     order = std::move(binary.order);
+    c.bvhRootLeaf = rootLeafCount(device.bvhNodes);
   }
   device.primitives.reserve(placed.size());
   for (uint32_t index : order) device.primitives.push_back(placed[index].primitive);

@@ -135,4 +135,17 @@ void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi) {
   }
 }
 
+uint32_t rootLeafCount(const std::vector<device::BvhNode>& nodes) {
+  if (nodes.empty()) return 0;
+  const device::BvhNode& root = nodes[0];
+  int used = 0;
+  uint32_t leaf = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (isEmptySlot(root, k)) continue;
+    ++used;
+    if (root.count[k] > 0 && root.child[k] == 0) leaf = root.count[k];
+  }
+  return used == 1 ? leaf : 0;
+}
+
 }  // namespace spectrace

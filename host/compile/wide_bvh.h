@@ -37,6 +37,15 @@ WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count);
 // both 0, the root being nobody's child).
 inline bool isEmptySlot(const device::BvhNode& node, int k) { return node.count[k] == 0 && node.child[k] == 0; }
 
+// The primitives of the root's only child when that child is a leaf (a
+// scene of a few primitives), else 0. A walk may start at that leaf, as if
+// the root's box test had passed: the hit is the same, since a box is met
+// by every ray that meets what it holds (its test is widened for rounding)
+// and the leaf's tests reject what the box would have. It saves each ray a
+// pass of the walk's loop, which on lavapipe runs both the node's and the
+// leaf's code.
+uint32_t rootLeafCount(const std::vector<device::BvhNode>& nodes);
+
 // The union of a root's child boxes: the tree's bounds.
 void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi);
 

@@ -127,9 +127,10 @@ class Walker {
  public:
   // `portable`: by the shader's own steps, not the CPU's vector step
   // (kernel/wide_walk.h); the tests below walk both.
+  // `rootLeaf`: start at the root's only leaf (TraceConstants::bvhRootLeaf).
   Walker(const std::vector<device::Primitive>& primitives, const std::vector<device::BvhNode>& nodes,
-         bool portable = false)
-      : kernel_(constants(primitives), {}, {}, {}) {
+         bool portable = false, uint32_t rootLeaf = 0)
+      : kernel_(constants(primitives, rootLeaf), {}, {}, {}) {
     kernel_.setObjects(primitives, nodes, {}, {});
     kernel_.portableWalk = portable;
   }
@@ -165,9 +166,10 @@ class Walker {
   }
 
  private:
-  static device::TraceConstants constants(const std::vector<device::Primitive>& primitives) {
+  static device::TraceConstants constants(const std::vector<device::Primitive>& primitives, uint32_t rootLeaf) {
     device::TraceConstants c{};
     c.objectPrimitives = uint32_t(primitives.size());
+    c.bvhRootLeaf = rootLeaf;
     return c;
   }
   device::BeamKernel kernel_;
@@ -273,6 +275,60 @@ TEST(WideBvh, ClosestHitsOfRandomTrianglesEqualBruteForce) {
     }
     EXPECT_GT(hits, 500) << "the test must hit often";
   }
+}
+
+// A few triangles make one leaf under the root, and a walk that starts at
+// it finds what the whole walk finds: for rays that meet the root's box and
+// rays that miss it, closest and any hit, on both kinds of step.
+TEST(WideBvh, AWalkFromTheRootsOnlyLeafFindsTheSameHits) {
+  Soup bigger = randomSoup(40, 14);
+  EXPECT_EQ(rootLeafCount(treeOf(bigger).wide.nodes), 0u) << "a tree of several leaves";
+  EXPECT_EQ(rootLeafCount({}), 0u);
+  int oneLeaf = 0;
+  for (size_t n = 1; n <= device::kBvhMaxLeafPrimitives; ++n) {
+    SCOPED_TRACE(n);
+    Soup soup;
+    std::mt19937_64 rng(20 + n);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    // Triangles of one mesh-like patch: the SAH keeps them in one leaf.
+    for (size_t i = 0; i < n; ++i) {
+      const vec3 c(0.1f * float(i), 0.05f * unit(rng), 0.5f);
+      soup.add(c, c + vec3(0.1f, 0.0f, 0.01f * unit(rng)), c + vec3(0.05f, 0.1f, 0.0f));
+    }
+    const Tree t = treeOf(soup);
+    const uint32_t rootLeaf = rootLeafCount(t.wide.nodes);
+    ASSERT_TRUE(rootLeaf == 0 || rootLeaf == n) << "the leaf holds them all";
+    if (rootLeaf == 0) continue;  // the SAH split them
+    ++oneLeaf;
+    for (const bool portable : {false, true}) {
+      Walker whole(t.primitives, t.wide.nodes, portable);
+      Walker fromLeaf(t.primitives, t.wide.nodes, portable, rootLeaf);
+      std::uniform_real_distribution<float> around(-1.0f, 2.0f);
+      int hits = 0, missedBox = 0;
+      vec3 lo, hi;
+      rootBounds(t.wide.nodes[0], lo, hi);
+      for (int r = 0; r < 4000; ++r) {
+        const vec3 origin(around(rng), around(rng), r % 2 == 0 ? -0.5f : around(rng));
+        // Half aimed at a triangle's corner or edge, half anywhere.
+        const device::Primitive& p = t.primitives[r % n];
+        const vec3 target = p.a + (r % 3 == 0 ? vec3(0.0f) : 0.5f * p.b);
+        const vec3 direction = r % 2 == 0 ? glm::normalize(target - origin) : unitVector(rng);
+        const float tMax = r % 5 == 0 ? 0.4f : 1e30f;
+        const KernelHit expected = whole.closest(origin, direction, tMax);
+        ASSERT_EQ(fromLeaf.closest(origin, direction, tMax), expected) << "ray " << r;
+        ASSERT_EQ(fromLeaf.closest(origin, direction, tMax, true).found, expected.found) << "ray " << r;
+        ASSERT_EQ(expected, whole.bruteForce(t.primitives, origin, direction, tMax)) << "ray " << r;
+        hits += expected.found ? 1 : 0;
+        const vec3 inverse = 1.0f / direction;
+        const vec3 t0 = (lo - origin) * inverse, t1 = (hi - origin) * inverse;
+        const vec3 nearT = glm::min(t0, t1), farT = glm::max(t0, t1);
+        missedBox += std::max({nearT.x, nearT.y, nearT.z, 0.0f}) > std::min({farT.x, farT.y, farT.z}) ? 1 : 0;
+      }
+      EXPECT_GT(hits, 1000) << "the test must hit";
+      EXPECT_GT(missedBox, 500) << "and miss the root's box";
+    }
+  }
+  EXPECT_GE(oneLeaf, 4) << "most of these patches must be one leaf";
 }
 
 // Rays aimed at the height field's shared vertices and edge midpoints, where
