@@ -85,6 +85,20 @@ TEST(UniformTables, PaddingAppendsZeroElementsOnly) {
   EXPECT_EQ(paddedTable(std::vector<int>{7, 8, 9}, 1).size(), 3u);
 }
 
+// The uniform path's film against the storage path's (the general
+// pipeline's), count for count.
+void expectUniformAndStorageAgree(const CompiledScene& plan, uint64_t beams) {
+  VulkanTracer uniform(testing::sharedVulkan(), plan, 64, kSpecialiseUniformTables);
+  VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
+  uniform.trace(0, beams);
+  storage.trace(0, beams);
+  const SpectralHistogram a = uniform.download();
+  const SpectralHistogram b = storage.download();
+  EXPECT_GT(a.countedBeams, 1000u);
+  EXPECT_EQ(a.countedBeams, b.countedBeams);
+  EXPECT_EQ(a.counts(), b.counts());
+}
+
 // Two lights of different spectra (so per-beam colour reads the CMF table
 // and the light choice reads the alias columns), aimed: every table is read.
 // The uniform path counts every beam where the storage path does.
@@ -99,15 +113,7 @@ TEST(UniformTables, UniformAndStorageTablesGiveTheSameFilm) {
   scene.lights = {panel, lamp};
   const CompiledScene plan = compileScene(scene, 7);
   ASSERT_TRUE(uniformTableLayout(plan.device, testing::sharedVulkan().info().maxUniformBufferRange, true).inUniform);
-  VulkanTracer uniform(testing::sharedVulkan(), plan, 64, kSpecialiseUniformTables);
-  VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
-  uniform.trace(0, 300'000);
-  storage.trace(0, 300'000);
-  const SpectralHistogram a = uniform.download();
-  const SpectralHistogram b = storage.download();
-  EXPECT_GT(a.countedBeams, 1000u);
-  EXPECT_EQ(a.countedBeams, b.countedBeams);
-  EXPECT_EQ(a.counts(), b.counts());
+  expectUniformAndStorageAgree(plan, 300'000);
 }
 
 // Objects of two primitive types and two materials (a diffuse sphere and a
@@ -145,15 +151,7 @@ TEST(UniformTables, UniformAndStorageObjectsGiveTheSameFilm) {
   const UniformTableLayout layout =
       uniformTableLayout(plan.device, testing::sharedVulkan().info().maxUniformBufferRange, true);
   ASSERT_TRUE(layout.objectsInUniform);
-  VulkanTracer uniform(testing::sharedVulkan(), plan, 64, kSpecialiseUniformTables);
-  VulkanTracer storage(testing::sharedVulkan(), plan, 64, kSpecialiseNone);
-  uniform.trace(0, 200'000);
-  storage.trace(0, 200'000);
-  const SpectralHistogram a = uniform.download();
-  const SpectralHistogram b = storage.download();
-  EXPECT_GT(a.countedBeams, 1000u);
-  EXPECT_EQ(a.countedBeams, b.countedBeams);
-  EXPECT_EQ(a.counts(), b.counts());
+  expectUniformAndStorageAgree(plan, 200'000);
 }
 
 }  // namespace
