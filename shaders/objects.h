@@ -105,6 +105,17 @@ FN void sortChildPair(INOUT(vec4) key, INOUT(uvec4) slot, int i, int j) {
   }
 }
 
+// The walk's rule for a primitive met at distance t (negative: missed):
+// the nearest hit in (0, hit.t) is kept, and of equal distances the lowest
+// primitive, so the hit does not depend on the order of the walk.
+FN void keepNearerHit(float t, uint primitive, INOUT(ObjectHit) hit, INOUT(bool) found) {
+  if (t > 0.0f && (t < hit.t || (found && t == hit.t && primitive < hit.primitive))) {
+    hit.t = t;
+    hit.primitive = primitive;
+    found = true;
+  }
+}
+
 // The closest primitive the ray meets at a distance in (0, tMax), through
 // the four-wide BVH (device_shared.h: BvhNode) with a fixed stack: the
 // children a node's ray meets are pushed far to near, so the nearest is
@@ -127,18 +138,12 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
 #ifdef SPECTRACE_CPU_WALK_STEP
       // The CPU's lanes for a leaf of triangles, the same hit
       // (host/kernel/wide_walk.h).
-      if (portableWalk || !nearestTriangleInLeaf(origin, direction, primitives.data() + child, child, count, hit.t,
-                                                 hit.primitive, found))
+      if (portableWalk ||
+          !nearestTriangleInLeaf(origin, direction, primitives.data() + child, child, count,
+                                 [&](float t, uint primitive) { keepNearerHit(t, primitive, hit, found); }))
 #endif
-      for (uint i = 0u; i < count; ++i) {
-        uint primitive = child + i;
-        float t = intersectPrimitive(origin, direction, readPrimitive(primitive));
-        if (t > 0.0f && (t < hit.t || (found && t == hit.t && primitive < hit.primitive))) {
-          hit.t = t;
-          hit.primitive = primitive;
-          found = true;
-        }
-      }
+      for (uint i = 0u; i < count; ++i)
+        keepNearerHit(intersectPrimitive(origin, direction, readPrimitive(child + i)), child + i, hit, found);
       if (found && anyHit) break;
     } else {
       BvhNode node = readBvhNode(child);

@@ -143,11 +143,13 @@ inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4
 // Exact: each lane does the shader's float operations in its order (dot3
 // and cross3 as beam_math.h writes them; no contraction), so u, v and t are
 // the same bits, and a lane that the shader would leave early is masked
-// out by the same comparisons. The hits are then taken in primitive order
-// by the shader's rule, so the result is the scalar loop's. Returns false,
-// touching nothing, where the leaf holds another type of primitive.
+// out by the same comparisons. Each triangle met is then handed to
+// `keepHit(t, primitive)` (the walk's rule, objects.h: keepNearerHit) in
+// primitive order, so the result is the scalar loop's. Returns false,
+// handing over nothing, where the leaf holds another type of primitive.
+template <typename KeepHit>
 inline bool nearestTriangleInLeaf(const glm::vec3& origin, const glm::vec3& direction, const Primitive* leaf,
-                                  uint32_t first, uint32_t count, float& hitT, uint32_t& hitPrimitive, bool& found) {
+                                  uint32_t first, uint32_t count, KeepHit keepHit) {
   for (uint32_t i = 0; i < count; ++i)
     if (leaf[i].type != kPrimitiveTriangle) return false;
   const float dx = direction.x, dy = direction.y, dz = direction.z;
@@ -168,15 +170,8 @@ inline bool nearestTriangleInLeaf(const glm::vec3& origin, const glm::vec3& dire
     const FloatLanes v = (dx * qx + dy * qy + dz * qz) * inverse;
     const FloatLanes t = (p.cx * qx + p.cy * qy + p.cz * qz) * inverse;
     const MaskLanes met = (det != 0.0f) & (u >= 0.0f) & (u <= 1.0f) & (v >= 0.0f) & (u + v <= 1.0f) & (t > 0.0f);
-    for (uint32_t k = 0; k < 4 && group + k < count; ++k) {
-      if (!met[k]) continue;
-      const uint32_t primitive = first + group + k;
-      if (t[k] < hitT || (found && t[k] == hitT && primitive < hitPrimitive)) {
-        hitT = t[k];
-        hitPrimitive = primitive;
-        found = true;
-      }
-    }
+    for (uint32_t k = 0; k < 4 && group + k < count; ++k)
+      if (met[k]) keepHit(t[k], first + group + k);
   }
   return true;
 }

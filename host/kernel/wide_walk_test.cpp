@@ -195,8 +195,8 @@ TEST_F(WalkSteps, EqualBoxesAreAllPushed) {
   EXPECT_EQ(got.keys, expected.keys);
 }
 
-// objects.h's leaf loop, as the shader runs it: each primitive's test, then
-// the rule that keeps the nearest (the lowest index of equal distances).
+// A walk's hit so far, and the walk's rule (objects.h: keepNearerHit)
+// applied to it.
 struct LeafHit {
   float t;
   uint32_t primitive;
@@ -204,13 +204,19 @@ struct LeafHit {
   bool operator==(const LeafHit&) const = default;
 };
 
+void keepNearer(BeamKernel& kernel, LeafHit& hit, float t, uint32_t primitive) {
+  BeamKernel::ObjectHit kept{hit.t, hit.primitive};
+  kernel.keepNearerHit(t, primitive, kept, hit.found);
+  hit.t = kept.t;
+  hit.primitive = kept.primitive;
+}
+
+// objects.h's leaf loop, as the shader runs it: each primitive's test, then
+// the rule.
 LeafHit shaderLeaf(BeamKernel& kernel, const vec3& origin, const vec3& direction, const std::vector<Primitive>& leaf,
                    uint32_t first, LeafHit hit) {
-  for (uint32_t i = 0; i < leaf.size(); ++i) {
-    const float t = kernel.intersectPrimitive(origin, direction, leaf[i]);
-    const uint32_t primitive = first + i;
-    if (t > 0.0f && (t < hit.t || (hit.found && t == hit.t && primitive < hit.primitive))) hit = {t, primitive, true};
-  }
+  for (uint32_t i = 0; i < leaf.size(); ++i)
+    keepNearer(kernel, hit, kernel.intersectPrimitive(origin, direction, leaf[i]), first + i);
   return hit;
 }
 
@@ -272,8 +278,8 @@ TEST_F(WalkSteps, TriangleLanesGiveTheShadersLeafHit) {
     }
     const LeafHit expected = shaderLeaf(kernel_, origin, direction, leaf, first, before);
     LeafHit got = before;
-    ASSERT_TRUE(nearestTriangleInLeaf(origin, direction, leaf.data(), first, uint32_t(n), got.t, got.primitive,
-                                      got.found));
+    ASSERT_TRUE(nearestTriangleInLeaf(origin, direction, leaf.data(), first, uint32_t(n),
+                                      [&](float t, uint32_t p) { keepNearer(kernel_, got, t, p); }));
     ASSERT_EQ(std::bit_cast<uint32_t>(got.t), std::bit_cast<uint32_t>(expected.t)) << "case " << r;
     ASSERT_EQ(got.primitive, expected.primitive) << "case " << r;
     ASSERT_EQ(got.found, expected.found) << "case " << r;
@@ -291,13 +297,10 @@ TEST_F(WalkSteps, TriangleLanesGiveTheShadersLeafHit) {
 TEST_F(WalkSteps, TriangleLanesDeclineOtherPrimitives) {
   std::vector<Primitive> leaf = {triangle(vec3(0, 0, 1), vec3(1, 0, 1), vec3(0, 1, 1)), Primitive{}};
   leaf[1].type = kPrimitiveSphere;
-  float t = 3.0e38f;
-  uint32_t primitive = 7u;
-  bool found = false;
-  EXPECT_FALSE(nearestTriangleInLeaf(vec3(0.1f, 0.1f, 0.0f), vec3(0, 0, 1), leaf.data(), 0u, 2u, t, primitive, found));
-  EXPECT_EQ(t, 3.0e38f);
-  EXPECT_EQ(primitive, 7u);
-  EXPECT_FALSE(found);
+  int handed = 0;
+  EXPECT_FALSE(nearestTriangleInLeaf(vec3(0.1f, 0.1f, 0.0f), vec3(0, 0, 1), leaf.data(), 0u, 2u,
+                                     [&](float, uint32_t) { ++handed; }));
+  EXPECT_EQ(handed, 0) << "no hit is handed over";
 }
 
 }  // namespace
