@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <initializer_list>
 
 namespace spectrace {
 namespace {
@@ -16,30 +17,23 @@ uint32_t arrayLength(size_t elements) {
 UniformTableLayout uniformTableLayout(const DeviceScene& tables, uint64_t maxUniformBufferRange, bool wanted) {
   UniformTableLayout layout;
   if (!wanted) return layout;
+  auto allFit = [&](std::initializer_list<uint64_t> bytes) {
+    return std::all_of(bytes.begin(), bytes.end(), [&](uint64_t b) { return b <= maxUniformBufferRange; });
+  };
   UniformTableLayout candidate{.inUniform = true,
                                .lights = arrayLength(tables.lights.size()),
                                .intervals = arrayLength(tables.intervals.size()),
                                .cmfNodes = arrayLength(tables.cmfTable.size()),
                                .aliasColumns = arrayLength(tables.aliasColumns.size())};
-  const uint64_t bytes[] = {candidate.lightBytes(), candidate.intervalBytes(), candidate.cmfBytes(),
-                            candidate.aliasColumnBytes()};
-  const bool fits = std::all_of(std::begin(bytes), std::end(bytes), [&](uint64_t b) { return b <= maxUniformBufferRange; });
-  if (fits) layout = candidate;
-  if (!tables.primitives.empty()) {
-    const uint32_t primitives = arrayLength(tables.primitives.size());
-    const uint32_t bvhNodes = arrayLength(tables.bvhNodes.size());
-    const uint32_t materials = arrayLength(tables.materials.size());
-    const uint64_t objectBytes[] = {uint64_t(primitives) * sizeof(device::Primitive),
-                                    uint64_t(bvhNodes) * sizeof(device::BvhNode),
-                                    uint64_t(materials) * sizeof(device::Material)};
-    if (std::all_of(std::begin(objectBytes), std::end(objectBytes),
-                    [&](uint64_t b) { return b <= maxUniformBufferRange; })) {
-      layout.objectsInUniform = true;
-      layout.primitives = primitives;
-      layout.bvhNodes = bvhNodes;
-      layout.materials = materials;
-    }
-  }
+  if (allFit({candidate.lightBytes(), candidate.intervalBytes(), candidate.cmfBytes(), candidate.aliasColumnBytes()}))
+    layout = candidate;
+  if (tables.primitives.empty()) return layout;
+  candidate = layout;
+  candidate.objectsInUniform = true;
+  candidate.primitives = arrayLength(tables.primitives.size());
+  candidate.bvhNodes = arrayLength(tables.bvhNodes.size());
+  candidate.materials = arrayLength(tables.materials.size());
+  if (allFit({candidate.primitiveBytes(), candidate.bvhNodeBytes(), candidate.materialBytes()})) layout = candidate;
   return layout;
 }
 

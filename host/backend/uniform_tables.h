@@ -8,9 +8,10 @@
 // Valid when every table fits the device's maxUniformBufferRange, with its
 // element count rounded up to a power of two (so scenes of similar size
 // share one compiled pipeline in a batch); this function is the one place
-// that checks it, for the tables and for the objects apart. Otherwise, and in the general pipeline, the tables are
-// read from their storage buffers. uniform_tables_test and
-// tests/render_test.cpp check both paths bit for bit against each other.
+// that checks it, for the tables and, apart, for the scene's objects.
+// Otherwise, and in the general pipeline, they are read from their storage
+// buffers. uniform_tables_test and tests/render_test.cpp check both paths
+// bit for bit against each other.
 #include <cstdint>
 #include <vector>
 
