@@ -210,11 +210,18 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
     if (bench.onRow) bench.onRow(row);
     rows.push_back(std::move(row));
   };
-  const Scene prism = bench.objects ? loadScene(bench.scenesDir / "prism.json") : Scene{};
-  const Scene colorChecker = bench.objects ? loadScene(bench.scenesDir / "colorchecker.json") : Scene{};
-  const Scene thinLens = bench.objects ? loadScene(bench.scenesDir / "thin_lens.json") : Scene{};
-  const Scene doubleGauss = bench.objects ? loadScene(bench.scenesDir / "double_gauss.json") : Scene{};
-  const Scene singlet = bench.objects ? singletColorChecker(colorChecker, bench.scenesDir) : Scene{};
+  // The objects section's scenes, empty when it does not run (an if, not
+  // ?:, whose temporary GCC 12 takes for an uninitialised shared_ptr).
+  auto objectScene = [&](auto make) {
+    Scene scene;
+    if (bench.objects) scene = make();
+    return scene;
+  };
+  const Scene prism = objectScene([&] { return loadScene(bench.scenesDir / "prism.json"); });
+  const Scene colorChecker = objectScene([&] { return loadScene(bench.scenesDir / "colorchecker.json"); });
+  const Scene thinLens = objectScene([&] { return loadScene(bench.scenesDir / "thin_lens.json"); });
+  const Scene doubleGauss = objectScene([&] { return loadScene(bench.scenesDir / "double_gauss.json"); });
+  const Scene singlet = objectScene([&] { return singletColorChecker(colorChecker, bench.scenesDir); });
   // Two variants of one scene, measured against one reference (the first
   // variant's mean), so their FOM ratio is a ratio of squared error x time.
   struct Variant {
@@ -235,8 +242,8 @@ std::vector<OpticsRow> runOpticsBench(const std::vector<DeviceSpec>& devices, co
   // the square covers the central 0.727 of the sensor; its interior, 0.8 of that.
   const std::pair<const char*, uint64_t> matched[] = {{"fom_emitter", 16'777'216}, {"fom_lit_grey", 16'777'216}};
   constexpr double kSquareInterior = 0.8 * (0.6 * 0.024 / 1.1) / 0.018;
-  const Scene mesh = bench.objects ? opticsMeshScene(1'000'000) : Scene{};
-  const Scene smallMesh = bench.objects ? opticsMeshScene(1'000) : Scene{};
+  const Scene mesh = objectScene([&] { return opticsMeshScene(1'000'000); });
+  const Scene smallMesh = objectScene([&] { return opticsMeshScene(1'000); });
   // Emission from a surface: the draw is O(1) in the triangles (an alias
   // table), so rows differ by the first walk through the emitter's tree.
   const std::pair<const char*, uint64_t> emitters[] = {

@@ -216,7 +216,6 @@ TEST_F(SceneTest, ExampleParsesWithTheRightValues) {
 
 TEST_F(SceneTest, DefaultsForOptionalSections) {
   Scene s = load(minimalScene());
-  SpectrumRange range;
   EXPECT_EQ(s.spectrum.minNm, 360.0);
   EXPECT_EQ(s.spectrum.maxNm, 830.0);
   EXPECT_EQ(s.spectrum.bins, 94);
