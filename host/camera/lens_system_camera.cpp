@@ -216,17 +216,17 @@ std::vector<LensSurface> parsePbrtTable(const jf::Source& c, const std::string& 
 // their common aperture; air before the sensor.
 void checkGeometry(const LensSystem& where, const LensPrescription& lens) {
   const jf::Source& c = where.source;
-  const std::string& surfacesPtr = where.surfacesPtr;
   const auto& s = lens.surfaces;
   const auto at = [&](size_t i, const char* key) { return where.fieldOf(i, key); };
-  if (s.empty()) c.fail(surfacesPtr, "a lens needs at least one surface");
+  const std::string surfacesField = where.surfacesField();
+  if (s.empty()) c.fail(surfacesField, "a lens needs at least one surface");
   if (s.size() > kMaxLensSurfaces)
-    c.fail(surfacesPtr, fmt::format("has {} surfaces; a lens has at most {}", s.size(), kMaxLensSurfaces));
+    c.fail(surfacesField, fmt::format("has {} surfaces; a lens has at most {}", s.size(), kMaxLensSurfaces));
   std::vector<size_t> stops;
   for (size_t i = 0; i < s.size(); ++i)
     if (s[i].stop) stops.push_back(i);
   if (stops.empty())
-    c.fail(surfacesPtr, "no surface is the aperture stop: mark exactly one flat surface \"stop\": true");
+    c.fail(surfacesField, "no surface is the aperture stop: " + where.howToMarkTheStop());
   if (stops.size() > 1)
     c.fail(at(stops[1], "stop"), fmt::format("a second aperture stop (surface {} is one already); a lens has one",
                                              stops[0]));
@@ -362,6 +362,16 @@ std::shared_ptr<const CameraModel> parse(const jf::Source& c, const jf::Json& v,
 }
 
 }  // namespace
+
+// A pbrt table has no JSON pointer (surfacesPtr is empty).
+static bool isTable(const LensSystem& lens) { return lens.file.extension() == ".dat"; }
+
+std::string LensSystem::surfacesField() const { return isTable(*this) ? "its surface lines" : surfacesPtr; }
+
+std::string LensSystem::howToMarkTheStop() const {
+  return isTable(*this) ? "give exactly one line a curvature radius of 0 (the stop is flat)"
+                        : "mark exactly one flat surface \"stop\": true";
+}
 
 std::string LensSystem::fieldOf(size_t surface, const std::string& key) const {
   if (tableLines.empty()) return jf::child(jf::child(surfacesPtr, surface), key);

@@ -25,6 +25,11 @@ struct LensSystem {
   std::vector<int> tableLines;
   // "/camera/lens/surfaces/2/medium", or "line 9 (index)" in a table.
   std::string fieldOf(size_t surface, const std::string& key) const;
+  // Where a message about the surfaces as a whole points:
+  // "/camera/lens/surfaces", or in a table "its surface lines".
+  std::string surfacesField() const;
+  // How a message tells the reader to mark the stop in this format.
+  std::string howToMarkTheStop() const;
 };
 
 std::shared_ptr<const CameraModel> lensSystemModel(LensSystem lens);

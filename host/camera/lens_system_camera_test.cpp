@@ -221,6 +221,13 @@ TEST_F(LensFiles, RefusalsNameTheFileAndTheField) {
   write("steep.dat", "# a surface steeper than its aperture\n0 0 0 25\n5 3 1.5 25\n-50 90 0 25\n");
   expectRefusal(R"({"file": "steep.dat"})", "steep.dat: line 3 (aperture diameter)",
                 "larger than the surface's sphere");
+  // A table with no stop, or no surface: the table's own terms, not a JSON
+  // pointer.
+  write("nostop.dat", "35.98 1.22 1.54 23.7\n11.70 9.99 0 18.0\n");
+  expectRefusal(R"({"file": "nostop.dat"})", "nostop.dat: its surface lines: no surface is the aperture stop",
+                "give exactly one line a curvature radius of 0");
+  write("empty.dat", "# no surfaces\n");
+  expectRefusal(R"({"file": "empty.dat"})", "empty.dat: its surface lines", "a lens needs at least one surface");
   // In a JSON lens file, its own path and field.
   write("bad.json", R"({"surfaces": [{"radius_m": 0, "thickness_m": 0.1, "semi_aperture_m": 0.01, "stop": true,
                                       "medium": "N-BK8"}]})");
