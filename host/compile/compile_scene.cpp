@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <span>
 #include <stdexcept>
 #include <fmt/format.h>
@@ -84,11 +83,8 @@ LightFrame lightFrame(const Light& light, const LightTypeUnit& unit, const Camer
 // enough for a device's uniform buffers (backend/uniform_tables.cpp).
 uint32_t sharedSpectralFirst(const std::vector<device::SpectralInterval>& intervals,
                              std::span<const device::LightRecord> lights, const SpectralTable& table) {
-  static_assert(sizeof(device::SpectralInterval) == 24, "memcmp below compares padding-free records");
   for (const device::LightRecord& earlier : lights) {
-    if (earlier.spectralCount == table.intervals.size() &&
-        std::memcmp(intervals.data() + earlier.spectralFirst, table.intervals.data(),
-                    table.intervals.size() * sizeof(device::SpectralInterval)) == 0)
+    if (sameSpectralTable(std::span(intervals).subspan(earlier.spectralFirst, earlier.spectralCount), table.intervals))
       return earlier.spectralFirst;
   }
   return uint32_t(intervals.size());

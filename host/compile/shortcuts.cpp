@@ -1,5 +1,7 @@
 #include "compile/shortcuts.h"
 
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "materials/material_type.h"
@@ -94,19 +96,19 @@ bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene) {
   return requested && shortcutBlockedBecause(shortcut, scene).empty();
 }
 
+bool sameSpectralTable(std::span<const device::SpectralInterval> a, std::span<const device::SpectralInterval> b) {
+  static_assert(sizeof(device::SpectralInterval) == 24, "memcmp below compares padding-free records");
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(device::SpectralInterval)) == 0;
+}
+
 std::string sharedSpectralTableMissingBecause(std::span<const device::LightRecord> lights,
                                               std::span<const device::SpectralInterval> intervals) {
-  auto same = [](const device::SpectralInterval& a, const device::SpectralInterval& b) {
-    return a.cdfLow == b.cdfLow && a.lambda0 == b.lambda0 && a.width == b.width && a.slope == b.slope;
+  const auto tableOf = [&](const device::LightRecord& light) {
+    return intervals.subspan(light.spectralFirst, light.spectralCount);
   };
-  for (size_t l = 1; l < lights.size(); ++l) {
-    const auto& first = lights[0];
-    const auto& light = lights[l];
-    bool equal = light.spectralCount == first.spectralCount;
-    for (uint32_t i = 0; equal && i < first.spectralCount; ++i)
-      equal = same(intervals[first.spectralFirst + i], intervals[light.spectralFirst + i]);
-    if (!equal) return "the traced lights draw from different spectral tables";
-  }
+  for (size_t l = 1; l < lights.size(); ++l)
+    if (!sameSpectralTable(tableOf(lights[0]), tableOf(lights[l])))
+      return "the traced lights draw from different spectral tables";
   return "";
 }
 

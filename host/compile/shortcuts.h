@@ -36,6 +36,10 @@ std::string shortcutBlockedBecause(Shortcut shortcut, const Scene& scene);
 // Whether a pass may take the shortcut: asked for, and valid for the scene.
 bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene);
 
+// Whether two spectral tables are the same, bit for bit (so their draws
+// are): lights whose tables are share one copy (compile_scene.cpp).
+bool sameSpectralTable(std::span<const device::SpectralInterval> a, std::span<const device::SpectralInterval> b);
+
 // ColourFromBins also needs every traced light to draw its wavelengths from
 // one and the same spectral table: why not, or "" when they do.
 std::string sharedSpectralTableMissingBecause(std::span<const device::LightRecord> lights,
