@@ -30,6 +30,11 @@ namespace jf = json_fields;
 
 // Surfaces a lens may have: more than any photographic lens (about 30).
 constexpr size_t kMaxLensSurfaces = 64;
+
+// Whether the lens comes from a pbrt table (.dat), whose messages point at
+// lines and columns, not JSON pointers.
+bool isTable(const LensSystem& lens) { return lens.file.extension() == ".dat"; }
+
 // A lens file is text of a few kilobytes.
 constexpr uint64_t kMaxLensFileBytes = uint64_t(1) << 20;
 
@@ -317,7 +322,7 @@ LensSystem parseLens(const jf::Source& scene, const jf::Json& v, const std::stri
     }
     lens.source.file = lens.file.string();
     lens.source.dir = lens.file.parent_path();
-    if (lens.file.extension() == ".dat") {
+    if (isTable(lens)) {
       lens.prescription.surfaces = parsePbrtTable(lens.source, text, lens.tableLines);
       lens.surfacesPtr = "";
     } else {
@@ -363,9 +368,6 @@ std::shared_ptr<const CameraModel> parse(const jf::Source& c, const jf::Json& v,
 
 }  // namespace
 
-// A pbrt table has no JSON pointer (surfacesPtr is empty).
-static bool isTable(const LensSystem& lens) { return lens.file.extension() == ".dat"; }
-
 std::string LensSystem::surfacesField() const { return isTable(*this) ? "its surface lines" : surfacesPtr; }
 
 std::string LensSystem::howToMarkTheStop() const {
@@ -374,7 +376,7 @@ std::string LensSystem::howToMarkTheStop() const {
 }
 
 std::string LensSystem::fieldOf(size_t surface, const std::string& key) const {
-  if (tableLines.empty()) return jf::child(jf::child(surfacesPtr, surface), key);
+  if (!isTable(*this)) return jf::child(jf::child(surfacesPtr, surface), key);
   // A pbrt table's columns, by the JSON key of the same quantity.
   const std::string column = key == "radius_m" || key == "stop" ? "curvature radius"
                              : key == "thickness_m"              ? "thickness"
