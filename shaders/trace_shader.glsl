@@ -33,8 +33,6 @@ layout(constant_id = kSpecMaterialTypes) const uint enabledMaterialTypes = kAllM
 // Camera paths (camera_path.h): 0 none, 1 some, 2 decided at run time; the
 // host always sets the scene's value.
 layout(constant_id = kSpecCameraPaths) const uint cameraPathsMode = 2u;
-// Bench only: the kernel cut after a stage (profile.h); the default is the whole kernel.
-layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;
 #define SPECTRACE_LIGHT_ENABLED(type) ((enabledLightTypes & (1u << (type))) != 0u)
 #define SPECTRACE_SELECT_LIGHT (selectLight != 0u && constants.lightCount > 1u)
 #define SPECTRACE_CAMERA_TYPE (cameraTypeMode == kCameraTypeAtRunTime ? constants.cameraType : cameraTypeMode)
@@ -206,6 +204,10 @@ void addWideCount(uint chunk, uint index, WideCount amount) {
 // more copies of the kernel, for the profile and the beam records, cost
 // about 1 s in every process).
 #ifdef SPECTRACE_WITH_PROFILE
+// The stage the kernel is cut after (profile.h); the default is the whole
+// kernel. Render modules do not declare it, and the host's value for it is
+// then ignored.
+layout(constant_id = kSpecProfileStage) const uint profileStage = kProfileStageFull;
 #include "profile.h"
 FN bool tracePath(uint64_t beamIndex, INOUT(BeamTally) tally) { return profileBeam(beamIndex, profileStage); }
 #else
