@@ -31,12 +31,12 @@ namespace jf = json_fields;
 // Surfaces a lens may have: more than any photographic lens (about 30).
 constexpr size_t kMaxLensSurfaces = 64;
 
+// A lens file is text of a few kilobytes.
+constexpr uint64_t kMaxLensFileBytes = uint64_t(1) << 20;
+
 // Whether the lens comes from a pbrt table (.dat), whose messages point at
 // lines and columns, not JSON pointers.
 bool isTable(const LensSystem& lens) { return lens.file.extension() == ".dat"; }
-
-// A lens file is text of a few kilobytes.
-constexpr uint64_t kMaxLensFileBytes = uint64_t(1) << 20;
 
 class LensSystemModel final : public EntranceDiskModel {
  public:

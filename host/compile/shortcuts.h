@@ -37,7 +37,8 @@ std::string shortcutBlockedBecause(Shortcut shortcut, const Scene& scene);
 bool shortcutApplies(Shortcut shortcut, bool requested, const Scene& scene);
 
 // Whether two spectral tables are the same, bit for bit (so their draws
-// are): lights whose tables are share one copy (compile_scene.cpp).
+// are): lights whose tables are the same share one copy
+// (compile_scene.cpp), and ColourFromBins asks it of every traced light.
 bool sameSpectralTable(std::span<const device::SpectralInterval> a, std::span<const device::SpectralInterval> b);
 
 // ColourFromBins also needs every traced light to draw its wavelengths from
