@@ -151,7 +151,7 @@ struct BenchReport {
   std::vector<ProfileRow> profile;
   std::vector<ObjectsProfileRow> objectsProfile;
   std::vector<CeilingRow> ceiling;
-  std::vector<RayCeilingRow> rayCeiling;  // at most one: the CPU's
+  std::vector<RayCeilingRow> rayCeiling;  // the CPU's, by mesh size, the largest last
   std::vector<SweepRow> sweep;
   std::vector<ColourBinRow> colour;
   std::vector<OpticsRow> optics;

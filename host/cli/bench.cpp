@@ -251,14 +251,11 @@ std::vector<CeilingRow> runCeiling(const BenchCommand& command, const std::vecto
   return rows;
 }
 
-// Closest-hit rays through the optics bench's million-triangle mesh, by the
+// Closest-hit rays through the optics bench's mesh of `triangles`, by the
 // shared kernel's BVH walk and by Embree (bench/ray_ceiling.h), on the CPU.
-// 2^20 rays; with --profile-beams under that (quick checks), that many
-// rays through a 1,000-triangle mesh.
-RayCeilingRow runRayCeilingSection(const BenchCommand& command, const std::atomic<bool>& cancel) {
-  const bool full = command.profileBeams >= (uint64_t(1) << 20);
-  const uint64_t rays = full ? uint64_t(1) << 20 : command.profileBeams;
-  const uint64_t triangles = full ? 1'000'000 : 1'000;
+// 2^20 rays; with --profile-beams under that (quick checks), that many.
+RayCeilingRow runRayCeilingSection(const BenchCommand& command, uint64_t triangles, const std::atomic<bool>& cancel) {
+  const uint64_t rays = std::min(command.profileBeams, uint64_t(1) << 20);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("\nRay ceiling: {} incoherent closest-hit rays through a mesh of {} triangles, spectrace's BVH "
              "(shared kernel, CPU) against Embree, 1 and {} threads (wall time, least of 2)\n",
@@ -660,7 +657,16 @@ int runBench(const BenchCommand& command, const std::atomic<bool>& cancel) {
   if (command.profile) report.profile = runProfile(command, report.devices, cancel);
   if (command.profile && !cancel.load()) report.objectsProfile = runObjectsProfile(command, report.devices, cancel);
   if (command.ceiling) report.ceiling = runCeiling(command, report.devices, cancel);
-  if (command.ceiling && !cancel.load()) report.rayCeiling.push_back(runRayCeilingSection(command, cancel));
+  if (command.ceiling) {
+    // The million-triangle mesh, and smaller ones that fit in the caches,
+    // which tell the walk's own instructions from its waits on memory; a
+    // quick check (--profile-beams under 2^20) the smallest alone.
+    const bool full = command.profileBeams >= (uint64_t(1) << 20);
+    for (uint64_t triangles : {uint64_t(1'000), uint64_t(10'000), uint64_t(100'000), uint64_t(1'000'000)}) {
+      if (cancel.load() || (!full && triangles > 1'000)) break;
+      report.rayCeiling.push_back(runRayCeilingSection(command, triangles, cancel));
+    }
+  }
   if (command.sweep) {
     SweepOptions options;
     options.scenes = referenceScenes(dir);
