@@ -133,6 +133,9 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
   uint depth = 0u;
   uint child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
   uint count = constants.bvhRootLeaf;
+#ifdef SPECTRACE_CPU_WALK_STEP
+  const WalkRay walkRay = walkRayOf(origin, inverse);
+#endif
   while (true) {
     if (count > 0u) {
 #ifdef SPECTRACE_CPU_WALK_STEP
@@ -146,16 +149,17 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
         keepNearerHit(intersectPrimitive(origin, direction, readPrimitive(child + i)), child + i, hit, found);
       if (found && anyHit) break;
     } else {
-      BvhNode node = readBvhNode(child);
 #ifdef SPECTRACE_CPU_WALK_STEP
-      // The CPU's vector form of the step below, the same bits
-      // (host/kernel/wide_walk.h); portableWalk keeps this text for tests.
+      // The CPU's vector form of the step below, the same children in the
+      // same order (host/kernel/wide_walk.h); portableWalk keeps this text
+      // for tests.
       if (!portableWalk) {
-        pushChildrenMet(origin, inverse, node, hit.t, stackEntry, stackEnter, depth,
+        pushChildrenMet(walkRay, bvhNodes[child], hit.t, stackEntry, stackEnter, depth,
                         [this](uint c, uint n) { prefetchBvhChild(c, n); });
       } else
 #endif
       {
+        BvhNode node = readBvhNode(child);
         vec4 enter;
         vec4 leave;
         rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);

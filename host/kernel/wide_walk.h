@@ -17,6 +17,7 @@
 // which children are visited (of equal distances the lowest primitive
 // wins), so only equal keys may be pushed in another order. wide_walk_test
 // checks both against the shader's step.
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -46,40 +47,118 @@ inline FloatLanes select(MaskLanes mask, FloatLanes ifTrue, FloatLanes ifFalse) 
 }
 // glm::min(x, y) and glm::max(x, y), lane by lane, with their choice on
 // ties and NaN.
+// SSE's minps(a, b) is a < b ? a : b, and maxps(a, b) a > b ? a : b (the
+// second operand on ties and NaN), so one instruction each, where GCC
+// leaves the select as a compare and three logic operations.
+#ifdef __SSE__
+inline FloatLanes lanesMin(FloatLanes x, FloatLanes y) { return FloatLanes(_mm_min_ps(__m128(y), __m128(x))); }
+inline FloatLanes lanesMax(FloatLanes x, FloatLanes y) { return FloatLanes(_mm_max_ps(__m128(y), __m128(x))); }
+#else
 inline FloatLanes lanesMin(FloatLanes x, FloatLanes y) { return select(y < x, y, x); }
 inline FloatLanes lanesMax(FloatLanes x, FloatLanes y) { return select(x < y, y, x); }
+#endif
+
+// Bit k set where lane k of `mask` is.
+inline unsigned laneBits(MaskLanes mask) {
+#ifdef __SSE__
+  return unsigned(_mm_movemask_ps(__m128(mask)));
+#else
+  unsigned bits = 0;
+  for (int k = 0; k < 4; ++k) bits |= unsigned(mask[k] & 1) << k;
+  return bits;
+#endif
+}
+
+// A ray as the vector step reads it, made once per walk: its origin and
+// inverse direction broadcast to lanes, and for each axis which of a node's
+// planes it meets first (the min plane where the inverse is positive, else
+// the max plane), as byte offsets into BvhNode.
+struct WalkRay {
+  FloatLanes ox, oy, oz, ix, iy, iz;
+  uint32_t nearX, nearY, nearZ, farX, farY, farZ;
+};
+
+inline WalkRay walkRayOf(const glm::vec3& origin, const glm::vec3& inverse) {
+  WalkRay ray;
+  ray.ox = broadcast(origin.x);
+  ray.oy = broadcast(origin.y);
+  ray.oz = broadcast(origin.z);
+  ray.ix = broadcast(inverse.x);
+  ray.iy = broadcast(inverse.y);
+  ray.iz = broadcast(inverse.z);
+  // inverseDirection never gives zero or NaN: -0 is negative here as well,
+  // which is right, since such an axis's inverse is never -0.
+  const auto planes = [](float inverseAxis, size_t minPlane, size_t maxPlane, uint32_t& nearPlane,
+                         uint32_t& farPlane) {
+    const bool positive = !(inverseAxis < 0.0f);
+    nearPlane = uint32_t(positive ? minPlane : maxPlane);
+    farPlane = uint32_t(positive ? maxPlane : minPlane);
+  };
+  planes(inverse.x, offsetof(BvhNode, minX), offsetof(BvhNode, maxX), ray.nearX, ray.farX);
+  planes(inverse.y, offsetof(BvhNode, minY), offsetof(BvhNode, maxY), ray.nearY, ray.farY);
+  planes(inverse.z, offsetof(BvhNode, minZ), offsetof(BvhNode, maxZ), ray.nearZ, ray.farZ);
+  return ray;
+}
+
+inline FloatLanes nodePlane(const BvhNode& node, uint32_t offset) {
+  FloatLanes lanes;
+  __builtin_memcpy(&lanes, reinterpret_cast<const char*>(&node) + offset, sizeof lanes);
+  return lanes;
+}
 
 // objects.h's rayMeetsChildren on lanes: child k is met before tMax when
 // enter[k] <= leave[k].
-inline void rayMeetsChildrenLanes(const glm::vec3& origin, const glm::vec3& inverse, const BvhNode& node, float tMax,
-                                  FloatLanes& enter, FloatLanes& leave) {
-  const FloatLanes ox = broadcast(origin.x), oy = broadcast(origin.y), oz = broadcast(origin.z);
-  const FloatLanes x0 = (lanesOf(node.minX) - ox) * inverse.x;
-  const FloatLanes x1 = (lanesOf(node.maxX) - ox) * inverse.x;
-  const FloatLanes y0 = (lanesOf(node.minY) - oy) * inverse.y;
-  const FloatLanes y1 = (lanesOf(node.maxY) - oy) * inverse.y;
-  const FloatLanes z0 = (lanesOf(node.minZ) - oz) * inverse.z;
-  const FloatLanes z1 = (lanesOf(node.maxZ) - oz) * inverse.z;
-  enter = lanesMax(lanesMax(lanesMin(x0, x1), lanesMin(y0, y1)), lanesMax(lanesMin(z0, z1), broadcast(0.0f)));
-  leave = lanesMin(lanesMin(lanesMax(x0, x1), lanesMax(y0, y1)), lanesMin(lanesMax(z0, z1), broadcast(tMax))) *
-          1.0000004f;
+//
+// The shader takes min and max of each axis's two plane distances; here
+// the near and far planes are chosen once per ray by the inverse's sign.
+// That gives the same numbers: a box's min plane is never above its max
+// plane, and rounding is monotonic, so (min - o) * i <= (max - o) * i for a
+// positive inverse i, and >= for a negative one. Only the sign of a zero
+// can differ (min and max of -0 and +0 pick by position), and no use of
+// enter and leave can tell: they are only compared. An empty slot's box is
+// a point, tested like any other and dropped by its zero child and count.
+inline void rayMeetsChildrenLanes(const WalkRay& ray, const BvhNode& node, float tMax, FloatLanes& enter,
+                                  FloatLanes& leave) {
+  const FloatLanes xNear = (nodePlane(node, ray.nearX) - ray.ox) * ray.ix;
+  const FloatLanes xFar = (nodePlane(node, ray.farX) - ray.ox) * ray.ix;
+  const FloatLanes yNear = (nodePlane(node, ray.nearY) - ray.oy) * ray.iy;
+  const FloatLanes yFar = (nodePlane(node, ray.farY) - ray.oy) * ray.iy;
+  const FloatLanes zNear = (nodePlane(node, ray.nearZ) - ray.oz) * ray.iz;
+  const FloatLanes zFar = (nodePlane(node, ray.farZ) - ray.oz) * ray.iz;
+  enter = lanesMax(lanesMax(xNear, yNear), lanesMax(zNear, broadcast(0.0f)));
+  leave = lanesMin(lanesMin(xFar, yFar), lanesMin(zFar, broadcast(tMax))) * 1.0000004f;
 }
 
 // The walk's step at `node`: its children that the ray meets before tMax
 // (empty slots never) onto the stack (objects.h's entries: child <<
 // kBvhCountBits | count, and the entry distance), far to near, so the
 // nearest is on top; `prefetch(child, count)` for each, as it is known.
+// Most steps meet one child, which is pushed without sorting.
 template <typename Prefetch>
-inline void pushChildrenMet(const glm::vec3& origin, const glm::vec3& inverse, const BvhNode& node, float tMax,
-                            uint32_t* stackEntry, float* stackEnter, uint32_t& depth, Prefetch prefetch) {
+inline void pushChildrenMet(const WalkRay& ray, const BvhNode& node, float tMax, uint32_t* stackEntry,
+                            float* stackEnter, uint32_t& depth, Prefetch prefetch) {
   FloatLanes enter, leave;
-  rayMeetsChildrenLanes(origin, inverse, node, tMax, enter, leave);
-  const MaskLanes met = enter <= leave;
+  rayMeetsChildrenLanes(ray, node, tMax, enter, leave);
+  MaskLanes child, count;
+  __builtin_memcpy(&child, &node.child, sizeof child);
+  __builtin_memcpy(&count, &node.count, sizeof count);
+  const MaskLanes met = (enter <= leave) & ((child | count) != 0);
+  const MaskLanes entries = (child << int(kBvhCountBits)) | count;
+  unsigned bits = laneBits(met);
+  if (bits == 0) return;
+  if ((bits & (bits - 1)) == 0) {
+    const int k = __builtin_ctz(bits);
+    prefetch(node.child[k], node.count[k]);
+    stackEntry[depth] = uint32_t(entries[k]);
+    stackEnter[depth] = enter[k];
+    ++depth;
+    return;
+  }
   float key[4];
   uint32_t entry[4];
   int n = 0;
-  for (int k = 0; k < 4; ++k) {
-    if (!met[k] || (node.count[k] == 0u && node.child[k] == 0u)) continue;
+  for (; bits != 0; bits &= bits - 1) {
+    const int k = __builtin_ctz(bits);
     prefetch(node.child[k], node.count[k]);
     // Insertion: farthest first.
     const float keyK = enter[k];
@@ -89,7 +168,7 @@ inline void pushChildrenMet(const glm::vec3& origin, const glm::vec3& inverse, c
       entry[j] = entry[j - 1];
     }
     key[j] = keyK;
-    entry[j] = (node.child[k] << kBvhCountBits) | node.count[k];
+    entry[j] = uint32_t(entries[k]);
   }
   for (int j = 0; j < n; ++j) {
     stackEntry[depth] = entry[j];
@@ -102,6 +181,7 @@ inline void pushChildrenMet(const glm::vec3& origin, const glm::vec3& inverse, c
 // records' floats, word offsets 0, 4 and 8), for `leaf[index[k]]` in lane k.
 struct TriangleLanes {
   FloatLanes ax, ay, az, bx, by, bz, cx, cy, cz;
+  MaskLanes type;  // the records' type words (word offset 3)
 };
 
 inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4]) {
@@ -122,6 +202,7 @@ inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4
     *rows[v][0] = FloatLanes(_mm_movelh_ps(xy01, xy23));
     *rows[v][1] = FloatLanes(_mm_movehl_ps(xy23, xy01));
     *rows[v][2] = FloatLanes(_mm_movelh_ps(zw01, zw23));
+    if (v == 0) lanes.type = MaskLanes(_mm_movehl_ps(zw23, zw01));
 #else
     for (int k = 0; k < 4; ++k) {
       const Primitive& p = leaf[index[k]];
@@ -129,6 +210,7 @@ inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4
       (*rows[v][0])[k] = corner.x;
       (*rows[v][1])[k] = corner.y;
       (*rows[v][2])[k] = corner.z;
+      lanes.type[k] = int32_t(p.type);
     }
 #endif
   }
@@ -145,19 +227,24 @@ inline TriangleLanes triangleLanes(const Primitive* leaf, const uint32_t index[4
 // the same bits, and a lane that the shader would leave early is masked
 // out by the same comparisons. Each triangle met is then handed to
 // `keepHit(t, primitive)` (the walk's rule, objects.h: keepNearerHit) in
-// primitive order, so the result is the scalar loop's. Returns false,
-// handing over nothing, where the leaf holds another type of primitive.
+// primitive order, so the result is the scalar loop's.
+//
+// Returns false where the leaf holds another type of primitive, found a
+// group of four at a time: the triangles of groups before it have been
+// handed over, and the caller's scalar loop hands them over again, which
+// changes nothing (keepNearerHit keeps the least (t, primitive) of those
+// it is given, and the least of a set is the same with repeats).
 template <typename KeepHit>
 inline bool nearestTriangleInLeaf(const glm::vec3& origin, const glm::vec3& direction, const Primitive* leaf,
                                   uint32_t first, uint32_t count, KeepHit keepHit) {
-  for (uint32_t i = 0; i < count; ++i)
-    if (leaf[i].type != kPrimitiveTriangle) return false;
   const float dx = direction.x, dy = direction.y, dz = direction.z;
   for (uint32_t group = 0; group < count; group += 4) {
     // Lanes past the leaf's end repeat its last triangle, and are not read.
     uint32_t index[4];
     for (uint32_t k = 0; k < 4; ++k) index[k] = group + k < count ? group + k : count - 1u;
     const TriangleLanes p = triangleLanes(leaf, index);
+    const MaskLanes triangle = p.type == int32_t(kPrimitiveTriangle);
+    if (!(triangle[0] & triangle[1] & triangle[2] & triangle[3])) return false;
     // pvec = cross3(direction, c); det = dot3(b, pvec).
     const FloatLanes px = dy * p.cz - dz * p.cy, py = dz * p.cx - dx * p.cz, pz = dx * p.cy - dy * p.cx;
     const FloatLanes det = p.bx * px + p.by * py + p.bz * pz;
@@ -170,8 +257,12 @@ inline bool nearestTriangleInLeaf(const glm::vec3& origin, const glm::vec3& dire
     const FloatLanes v = (dx * qx + dy * qy + dz * qz) * inverse;
     const FloatLanes t = (p.cx * qx + p.cy * qy + p.cz * qz) * inverse;
     const MaskLanes met = (det != 0.0f) & (u >= 0.0f) & (u <= 1.0f) & (v >= 0.0f) & (u + v <= 1.0f) & (t > 0.0f);
-    for (uint32_t k = 0; k < 4 && group + k < count; ++k)
-      if (met[k]) keepHit(t[k], first + group + k);
+    // Lanes past the leaf's end are masked off; the hits go in lane order.
+    const unsigned inLeaf = count - group >= 4 ? 15u : (1u << (count - group)) - 1u;
+    for (unsigned bits = laneBits(met) & inLeaf; bits != 0; bits &= bits - 1) {
+      const int k = __builtin_ctz(bits);
+      keepHit(t[k], first + group + uint32_t(k));
+    }
   }
   return true;
 }
