@@ -151,11 +151,13 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
     } else {
 #ifdef SPECTRACE_CPU_WALK_STEP
       // The CPU's vector form of the step below, the same children in the
-      // same order (host/kernel/wide_walk.h); portableWalk keeps this text
-      // for tests.
+      // same order (host/kernel/wide_walk.h): the nearest, which the step
+      // below would push and pop at once, is visited directly.
+      // portableWalk keeps this text for tests.
       if (!portableWalk) {
-        pushChildrenMet(walkRay, bvhNodes[child], hit.t, stackEntry, stackEnter, depth,
-                        [this](uint c, uint n) { prefetchBvhChild(c, n); });
+        if (nearestChildMet(walkRay, bvhNodes[child], hit.t, stackEntry, stackEnter, depth, child, count,
+                            [this](uint c, uint n) { prefetchBvhChild(c, n); }))
+          continue;
       } else
 #endif
       {

@@ -129,37 +129,48 @@ inline void rayMeetsChildrenLanes(const WalkRay& ray, const BvhNode& node, float
   leave = lanesMin(lanesMin(xFar, yFar), lanesMin(zFar, broadcast(tMax))) * 1.0000004f;
 }
 
-// The walk's step at `node`: its children that the ray meets before tMax
-// (empty slots never) onto the stack (objects.h's entries: child <<
-// kBvhCountBits | count, and the entry distance), far to near, so the
-// nearest is on top; `prefetch(child, count)` for each, as it is known.
-// Most steps meet one child, which is pushed without sorting.
+// The walk's step at `node`, for its children that the ray meets before
+// tMax (empty slots never): the nearest goes to `child` and `count`, to be
+// visited next, and the others onto the stack (objects.h's entries: child
+// << kBvhCountBits | count, and the entry distance), far to near, so the
+// next nearest is on top; `prefetch(child, count)` for each, as it is
+// known. Returns false, pushing nothing, when no child is met.
+//
+// The shader pushes the nearest too and pops it at once: its entry
+// distance is never beyond the walk's reach (enter <= leave, and leave is
+// at most tMax times the same widening as the reach), so visiting it
+// directly is the same walk. Most steps meet one child, which needs no
+// sorting and no stack.
 template <typename Prefetch>
-inline void pushChildrenMet(const WalkRay& ray, const BvhNode& node, float tMax, uint32_t* stackEntry,
-                            float* stackEnter, uint32_t& depth, Prefetch prefetch) {
+inline bool nearestChildMet(const WalkRay& ray, const BvhNode& node, float tMax, uint32_t* stackEntry,
+                            float* stackEnter, uint32_t& depth, uint32_t& child, uint32_t& count,
+                            Prefetch prefetch) {
   FloatLanes enter, leave;
   rayMeetsChildrenLanes(ray, node, tMax, enter, leave);
-  MaskLanes child, count;
-  __builtin_memcpy(&child, &node.child, sizeof child);
-  __builtin_memcpy(&count, &node.count, sizeof count);
-  const MaskLanes met = (enter <= leave) & ((child | count) != 0);
-  const MaskLanes entries = (child << int(kBvhCountBits)) | count;
+  // The node's words as plain arrays: glm's uvec4 reads a lane by a
+  // switch, a branch for each read with a variable index.
+  uint32_t childWords[4], countWords[4];
+  __builtin_memcpy(childWords, &node.child, sizeof childWords);
+  __builtin_memcpy(countWords, &node.count, sizeof countWords);
+  MaskLanes childLanes, countLanes;
+  __builtin_memcpy(&childLanes, childWords, sizeof childLanes);
+  __builtin_memcpy(&countLanes, countWords, sizeof countLanes);
+  const MaskLanes met = (enter <= leave) & ((childLanes | countLanes) != 0);
   unsigned bits = laneBits(met);
-  if (bits == 0) return;
+  if (bits == 0) return false;
   if ((bits & (bits - 1)) == 0) {
     const int k = __builtin_ctz(bits);
-    prefetch(node.child[k], node.count[k]);
-    stackEntry[depth] = uint32_t(entries[k]);
-    stackEnter[depth] = enter[k];
-    ++depth;
-    return;
+    prefetch(childWords[k], countWords[k]);
+    child = childWords[k];
+    count = countWords[k];
+    return true;
   }
   float key[4];
   uint32_t entry[4];
   int n = 0;
   for (; bits != 0; bits &= bits - 1) {
     const int k = __builtin_ctz(bits);
-    prefetch(node.child[k], node.count[k]);
+    prefetch(childWords[k], countWords[k]);
     // Insertion: farthest first.
     const float keyK = enter[k];
     int j = n++;
@@ -168,13 +179,16 @@ inline void pushChildrenMet(const WalkRay& ray, const BvhNode& node, float tMax,
       entry[j] = entry[j - 1];
     }
     key[j] = keyK;
-    entry[j] = uint32_t(entries[k]);
+    entry[j] = (childWords[k] << kBvhCountBits) | countWords[k];
   }
-  for (int j = 0; j < n; ++j) {
+  for (int j = 0; j + 1 < n; ++j) {
     stackEntry[depth] = entry[j];
     stackEnter[depth] = key[j];
     ++depth;
   }
+  child = entry[n - 1] >> kBvhCountBits;
+  count = entry[n - 1] & ((1u << kBvhCountBits) - 1u);
+  return true;
 }
 
 // Four triangles' a, b and c as lanes: x, y and z of each (the Primitive

@@ -84,10 +84,27 @@ class WalkSteps : public ::testing::Test {
     float keys[4];
     uint32_t depth = 0;
     const vec3 inverse = kernel_.inverseDirection(direction);
-    pushChildrenMet(walkRayOf(origin, inverse), node, tMax, entries, keys, depth, [&](uint32_t, uint32_t) {
-      if (prefetched) ++*prefetched;
-    });
-    return Step{std::vector<uint32_t>(entries, entries + depth), std::vector<float>(keys, keys + depth)};
+    uint32_t child = 0, count = 0;
+    const bool met = nearestChildMet(walkRayOf(origin, inverse), node, tMax, entries, keys, depth, child, count,
+                                     [&](uint32_t, uint32_t) {
+                                       if (prefetched) ++*prefetched;
+                                     });
+    Step step{std::vector<uint32_t>(entries, entries + depth), std::vector<float>(keys, keys + depth)};
+    if (!met) {
+      EXPECT_EQ(depth, 0u) << "nothing pushed when nothing is met";
+      return step;
+    }
+    // The nearest, visited next, is where the shader's step leaves it: on
+    // top of the stack, at its entry distance.
+    step.entries.push_back((child << kBvhCountBits) | count);
+    FloatLanes enter, leave;
+    rayMeetsChildrenLanes(walkRayOf(origin, inverse), node, tMax, enter, leave);
+    for (int k = 0; k < 4; ++k)
+      if (node.child[k] == child && node.count[k] == count && enter[k] <= leave[k]) {
+        step.keys.push_back(enter[k]);
+        break;
+      }
+    return step;
   }
 
   BeamKernel kernel_;
