@@ -43,8 +43,10 @@ if(MODE STREQUAL "shards")
 elseif(MODE STREQUAL "kill")
   # Enough beams that the first checkpoint (after 1 s) comes well before the
   # end; the kill waits for it, so more beams only lengthen the resumed and
-  # the whole render.
-  set(beams 5000000)
+  # the whole render. 5 million took about 1.0 s on one thread of an AMD
+  # EPYC, so the checkpoint and the render's end raced; 20 million leave
+  # about 3 s after it.
+  set(beams 20000000)
   # SIGKILL once the first checkpoint's state exists (not after a fixed
   # time, which a loaded machine can spend before the first checkpoint);
   # exit 3 from the shell: the render ended by itself first.

@@ -3,20 +3,20 @@
 // (shaders/objects.h: intersectObjects): at a leaf of triangles, four of
 // them tested on the lanes of one register (nearestTriangleInLeaf, below);
 // at a node, the ray against the node's four child boxes on one vector
-// register, then the children met pushed far to near by a short insertion
-// among those met. The shader's
-// step, compiled as C++, is scalar (GCC does not vectorise its vec4 lanes)
-// and runs the fixed sorting network that keeps a GPU's lanes together, so
-// a CPU thread paid for both; this step traces the ray ceiling's incoherent
-// rays about 1.4x as fast (docs/benchmarks.md).
+// register, the nearest child met taken next and the others pushed far to
+// near by a short insertion. The shader's step, compiled as C++, is scalar
+// (GCC does not vectorise its vec4 lanes) and runs the fixed sorting
+// network that keeps a GPU's lanes together, so a CPU thread paid for
+// both; this step traces the ray ceiling's incoherent rays about twice as
+// fast (docs/benchmarks.md).
 //
 // Exact, not an approximation: the box test does the shader's float
-// operations in the shader's order, min and max picking as glm's do
-// (glm::min(x, y) is y < x ? y : x), so entry and exit distances are the
-// same bits; and the walk's closest hit does not depend on the order in
-// which children are visited (of equal distances the lowest primitive
-// wins), so only equal keys may be pushed in another order. wide_walk_test
-// checks both against the shader's step.
+// operations in the shader's order on the planes the shader's min and max
+// would pick, so entry and exit distances are the same numbers (the sign
+// of a zero aside, which no comparison sees); and the walk's closest hit
+// does not depend on the order in which children are visited (of equal
+// distances the lowest primitive wins), so only equal keys may be pushed
+// in another order. wide_walk_test checks both against the shader's step.
 #include <cstddef>
 #include <cstdint>
 
