@@ -34,22 +34,17 @@ namespace spectrace::device {
 typedef float FloatLanes __attribute__((vector_size(16)));
 typedef int32_t MaskLanes __attribute__((vector_size(16)));
 
-inline FloatLanes lanesOf(const glm::vec4& v) {
-  FloatLanes lanes;
-  __builtin_memcpy(&lanes, &v, sizeof lanes);
-  return lanes;
-}
 inline FloatLanes broadcast(float x) { return FloatLanes{x, x, x, x}; }
 // A lane of `ifTrue` where `mask` is set, else of `ifFalse` (a blend; GCC
 // and Clang both take it, where a vector ?: is GCC's alone).
 inline FloatLanes select(MaskLanes mask, FloatLanes ifTrue, FloatLanes ifFalse) {
   return FloatLanes((mask & MaskLanes(ifTrue)) | (~mask & MaskLanes(ifFalse)));
 }
-// glm::min(x, y) and glm::max(x, y), lane by lane, with their choice on
-// ties and NaN.
-// SSE's minps(a, b) is a < b ? a : b, and maxps(a, b) a > b ? a : b (the
-// second operand on ties and NaN), so one instruction each, where GCC
-// leaves the select as a compare and three logic operations.
+// glm::min(x, y) (y < x ? y : x) and glm::max(x, y) (x < y ? y : x), lane
+// by lane, with their choice on ties and NaN. SSE's minps(a, b) is a < b ?
+// a : b and maxps(a, b) is a > b ? a : b, the second operand on ties and
+// NaN, so each is one instruction, where GCC leaves the select as a
+// compare and three logic operations.
 #ifdef __SSE__
 inline FloatLanes lanesMin(FloatLanes x, FloatLanes y) { return FloatLanes(_mm_min_ps(__m128(y), __m128(x))); }
 inline FloatLanes lanesMax(FloatLanes x, FloatLanes y) { return FloatLanes(_mm_max_ps(__m128(y), __m128(x))); }
@@ -86,8 +81,8 @@ inline WalkRay walkRayOf(const glm::vec3& origin, const glm::vec3& inverse) {
   ray.ix = broadcast(inverse.x);
   ray.iy = broadcast(inverse.y);
   ray.iz = broadcast(inverse.z);
-  // inverseDirection never gives zero or NaN: -0 is negative here as well,
-  // which is right, since such an axis's inverse is never -0.
+  // inverseDirection gives no zero or NaN (a zero component's inverse is
+  // +3e38), so each axis's inverse is plainly positive or negative.
   const auto planes = [](float inverseAxis, size_t minPlane, size_t maxPlane, uint32_t& nearPlane,
                          uint32_t& farPlane) {
     const bool positive = !(inverseAxis < 0.0f);
