@@ -329,8 +329,8 @@ TEST_F(WalkSteps, TriangleLanesDeclineOtherPrimitives) {
                                      [&](float, uint32_t) { ++handed; }));
   EXPECT_EQ(handed, 0) << "no hit is handed over";
 
-  // Six: triangles at z = 3, 1 (twice: a tie), 2 and 4, then a sphere at the
-  // origin, behind the ray's start, which the ray misses.
+  // Six: triangles at z = 3, 1 (twice: a tie), 2 and 4, then a sphere about
+  // z = -5, behind the ray's start, which the ray misses.
   std::vector<Primitive> mixed;
   for (float z : {3.0f, 1.0f, 1.0f, 2.0f, 4.0f})
     mixed.push_back(triangle(vec3(0, 0, z), vec3(1, 0, z), vec3(0, 1, z)));
