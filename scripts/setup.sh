@@ -12,7 +12,7 @@ packages=(
   librandom123-dev libgtest-dev libboost-dev                     # Philox, tests, chi-square p-values
   gnuplot-nox                                                    # benchmark plots
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
-  libtinyobjloader-dev                                           # OBJ meshes of scene objects
+  libtinyobjloader-dev                                           # OBJ meshes in e500837 (scripts/*_against_base.sh)
   libzstd-dev                                                    # compressed render states
   libembree-dev                                                  # the bench's ray ceiling (optional in CMake)
   python3-dev python3-venv                                       # the Python module (python/)

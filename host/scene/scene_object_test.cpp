@@ -337,10 +337,10 @@ TEST_F(ObjectTest, MissingObjIsNamedWithTheField) {
   expectObjectError(mesh, "/objects/0/file", {"cannot read \"folder.obj\": is a directory"});
 }
 
-TEST_F(ObjectTest, ObjParseErrorsAreTinyobjloadersMessage) {
-  // An `l` line is not checked before tinyobjloader reads the file.
+TEST_F(ObjectTest, PolylineCornersAreCheckedLikeFaces) {
+  // `l` lines are not used, but one with a vertex 0 is not an OBJ file.
   expectMeshError("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 0 1\nf 1 2 3\n",
-                  {"cannot parse \"bad.obj\": Failed parse `l' line", "line 4"});
+                  {"\"bad.obj\" line 4, \"0\": polyline (l) 1 refers to vertex 0; OBJ numbers them from 1"});
 }
 
 TEST_F(ObjectTest, MeshWithoutTrianglesIsRefused) {
@@ -361,9 +361,11 @@ TEST_F(ObjectTest, VertexIndexOutOfRange) {
 TEST_F(ObjectTest, NonFiniteAndOutOfWorldCoordinates) {
   expectMeshError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
                   {"\"bad.obj\" line 2, \"1e999\": vertex 2 has a coordinate that is not finite"});
-  // 0 in OBJ syntax that tinyobjloader reads as 0 * inf.
+  // 0 in OBJ syntax (which tinyobjloader read as 0 * inf, nan) is 0: the
+  // face's first two corners are the same point.
   expectMeshError("v 0 0 0\nv 0e999999999 0 0\nv 0 1 0\nf 1 2 3\n",
-                  {"\"bad.obj\": vertex 2 is not finite (", "nan, 0, 0])"});
+                  {"\"bad.obj\": face 1 has zero area: its corners, vertices 1, 2 and 3, lie at [0, 0, 0], [0, 0, 0] "
+                   "and [0, 1, 0]"});
   expectMeshError("v 0 0 0\nv 2e12 0 0\nv 0 1 0\nf 1 2 3\n",
                   {"\"bad.obj\": vertex 2 lies at [2000000000000, 0, 0]; world coordinates must be finite with "
                    "magnitude <= 1e+12 m"});

@@ -5,14 +5,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <future>
 #include <numbers>
-#include <streambuf>
 #include <system_error>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
-#include <tiny_obj_loader.h>
 
 #include "camera/world_limits.h"
 #include "json/input_file.h"
@@ -47,17 +44,6 @@ std::string fmtPoint(const glm::dvec3& p) {
 }
 
 bool finite(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
-// Reads a string in place: tinyobjloader takes an istream, and the file's
-// bytes (up to 1 GiB) should not be copied again.
-struct StringViewBuf : std::streambuf {
-  explicit StringViewBuf(std::string& s) { setg(s.data(), s.data(), s.data() + s.size()); }
-};
-
-std::string trimmed(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ' || s.back() == '.')) s.pop_back();
-  return s;
-}
 
 std::string joinFaces(const std::vector<std::string>& names) {
   std::string out;
@@ -180,64 +166,32 @@ std::string readObjFile(const jf::Source& c, const std::string& ptr, const fs::p
   }
 }
 
-struct TinyObjMesh {
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
-};
-
-// tinyobjloader's reading of `text`: the mesh, or its error message.
-struct TinyObjReading {
-  TinyObjMesh mesh;
-  bool parsed = false;
-  std::string error, warning;
-};
-
-TinyObjReading readWithTinyobj(std::string& text) {
-  TinyObjReading reading;
-  std::vector<tinyobj::material_t> materials;
-  StringViewBuf buffer(text);
-  std::istream in(&buffer);
-  // No material reader: "mtllib" lines are skipped (surfaces come from
-  // the scene). Polygons stay whole: they are split below, where faces
-  // keep the file's numbers.
-  reading.parsed = tinyobj::LoadObj(&reading.mesh.attrib, &reading.mesh.shapes, &materials, &reading.warning,
-                                    &reading.error, &in, nullptr,
-                                    /*triangulate=*/false, /*default_vcols_fallback=*/false);
-  return reading;
-}
-
 struct FanTriangles {
   MeshTriangles triangles;
   std::vector<uint64_t> faceOf;  // each triangle's face number, from 1
-  uint64_t faces = 0;
 };
 
-// Faces in file order (tinyobjloader's shapes are the file's o/g groups, in
-// order), each polygon a fan from its first corner.
-FanTriangles fanTriangles(const jf::Source& c, const std::string& ptr, const std::vector<tinyobj::shape_t>& objShapes,
-                          size_t vertexCount, uint64_t triangleCount, const std::string& quoted) {
+// Faces in file order, each polygon a fan from its first corner.
+FanTriangles fanTriangles(const jf::Source& c, const std::string& ptr, const ObjText& obj, uint64_t triangleCount,
+                          const std::string& quoted) {
   FanTriangles fan;
   fan.triangles.reserve(triangleCount);
   fan.faceOf.reserve(triangleCount);
-  uint64_t& face = fan.faces;
-  for (const auto& s : objShapes) {
-    size_t next = 0;
-    for (unsigned corners : s.mesh.num_face_vertices) {
-      ++face;
-      std::vector<uint32_t> v(corners);
-      for (unsigned k = 0; k < corners; ++k) {
-        const int index = s.mesh.indices[next + k].vertex_index;
-        if (index < 0 || size_t(index) >= vertexCount)
-          c.fail(ptr, fmt::format("{}: face {} refers to vertex {}, but the file has {} vertices{}", quoted, face,
-                                  index < 0 ? std::string("before the first") : std::to_string(int64_t(index) + 1),
-                                  vertexCount, vertexCount ? fmt::format(" (1 to {})", vertexCount) : ""));
-        v[k] = uint32_t(index);
-      }
-      next += corners;
-      for (unsigned k = 1; k + 1 < corners; ++k) {
-        fan.triangles.push_back({v[0], v[k], v[k + 1]});
-        fan.faceOf.push_back(face);
-      }
+  const size_t vertexCount = obj.vertices.size();
+  size_t next = 0;
+  for (size_t face = 0; face < obj.cornerCounts.size(); ++face) {
+    const uint32_t* v = obj.corners.data() + next;
+    const uint32_t corners = obj.cornerCounts[face];
+    next += corners;
+    // readObjText has checked every index against the file's vertices; the
+    // mesh's memory safety should not rest on that alone.
+    for (uint32_t k = 0; k < corners; ++k)
+      if (v[k] >= vertexCount)
+        c.fail(ptr, fmt::format("{}: face {} refers to vertex {}, but the file has {} vertices", quoted, face + 1,
+                                uint64_t(v[k]) + 1, vertexCount));
+    for (uint32_t k = 1; k + 1 < corners; ++k) {
+      fan.triangles.push_back({v[0], v[k], v[k + 1]});
+      fan.faceOf.push_back(face + 1);
     }
   }
   return fan;
@@ -256,51 +210,26 @@ std::string loadObjMesh(const jf::Source& c, const std::string& ptr, const fs::p
 std::string parseObjMesh(const jf::Source& c, const std::string& ptr, std::string text, const std::string& asWritten,
                          const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
   const std::string quoted = jf::jsonQuoted(asWritten);
-  // The text check and tinyobjloader read the same bytes independently, so
-  // they run side by side (each is about a third of a large mesh's load);
-  // the check's verdict is still taken first.
-  std::future<ObjTextCheck> checking =
-      std::async(std::launch::async, [&text] { return checkObjText(text); });
-  TinyObjReading reading = readWithTinyobj(text);
-  const ObjTextCheck check = checking.get();
+  ObjText obj = readObjText(text);
   text = std::string();  // up to 1 GiB, not needed after
-  if (check.fault)
-    c.fail(ptr, fmt::format("{} line {}, {}: {}", quoted, check.fault->line, check.fault->token, check.fault->what));
-  if (!reading.parsed) c.fail(ptr, fmt::format("cannot parse {}: {}", quoted, trimmed(reading.error)));
-  if (reading.warning.find("Degenerated face") != std::string::npos)
-    c.fail(ptr, fmt::format("{} has a face with fewer than 3 vertices", quoted));
-  TinyObjMesh& mesh = reading.mesh;
-  tinyobj::attrib_t& attrib = mesh.attrib;
-  std::vector<tinyobj::shape_t>& objShapes = mesh.shapes;
-  const size_t vertexCount = attrib.vertices.size() / 3;
+  if (obj.fault)
+    c.fail(ptr, fmt::format("{} line {}, {}: {}", quoted, obj.fault->line, obj.fault->token, obj.fault->what));
+  const size_t vertexCount = obj.vertices.size();
   if (vertexCount > kMaxMeshVertices)
     c.fail(ptr, fmt::format("{} has {} vertices; a mesh has at most {}", quoted, vertexCount, kMaxMeshVertices));
   uint64_t triangleCount = 0;
-  for (const auto& s : objShapes)
-    for (unsigned corners : s.mesh.num_face_vertices) triangleCount += corners - 2;
+  for (uint32_t corners : obj.cornerCounts) triangleCount += corners - 2;
   if (triangleCount == 0) c.fail(ptr, fmt::format("{} has no triangles (no faces)", quoted));
   if (triangleCount > maxTriangles)
     c.fail(ptr, fmt::format("{} has {} triangles, more than the {} left of the {} a scene may hold", quoted,
                             triangleCount, maxTriangles, kMaxSceneTriangles));
 
-  FanTriangles fan = fanTriangles(c, ptr, objShapes, vertexCount, triangleCount, quoted);
+  FanTriangles fan = fanTriangles(c, ptr, obj, triangleCount, quoted);
   MeshTriangles& triangles = fan.triangles;
   const std::vector<uint64_t>& faceOf = fan.faceOf;
-  // The text check numbered vertices and faces as tinyobjloader must have:
-  // if not, its index checks do not describe this mesh.
-  if (vertexCount != check.vertices || fan.faces != check.faces)
-    c.fail(ptr, fmt::format("{}: the readers disagree: tinyobjloader read {} vertices and {} faces, the text check "
-                            "counted {} and {}",
-                            quoted, vertexCount, fan.faces, check.vertices, check.faces));
-  objShapes = {};
-
-  std::vector<glm::dvec3> points(vertexCount);
-  for (size_t i = 0; i < vertexCount; ++i)
-    points[i] = {attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]};
-  attrib = tinyobj::attrib_t();
-  for (size_t i = 0; i < vertexCount; ++i)
-    if (!finite(points[i]))
-      c.fail(ptr, fmt::format("{}: vertex {} is not finite ({})", quoted, i + 1, fmtPoint(points[i])));
+  obj.corners = {};
+  obj.cornerCounts = {};
+  const std::vector<glm::dvec3> points = std::move(obj.vertices);  // finite, as readObjText reads them
   const bool identity = transform.scale == glm::dvec3(1.0) && transform.rotateDeg == glm::dvec3(0.0) &&
                         transform.translate == glm::dvec3(0.0);
   std::vector<glm::dvec3> placed = placePoints(transform, points);

@@ -1,8 +1,8 @@
 #pragma once
 // Inside the shapes module: triangle meshes, for the mesh unit
-// (mesh_shape.cpp). Reading Wavefront OBJ files (Debian's tinyobjloader)
-// into a mesh object's shape, in world coordinates, and the checks on
-// triangles that meshes built in code get too.
+// (mesh_shape.cpp). Reading Wavefront OBJ files (obj_text.h) into a mesh
+// object's shape, in world coordinates, and the checks on triangles that
+// meshes built in code get too.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -46,11 +46,10 @@ bool mirrors(const MeshTransform& transform);
 // file's positions in its order (vertex k is the file's vertex k + 1) placed
 // by `transform`; shape.triangles, shape.closed and shape.meshFile. Every
 // problem is c.fail(ptr, ...), naming faces and vertices as the file numbers
-// them: an unreadable file, a refused token of a `v` or `f` line
-// (checkObjText, obj_text.h: the line and the token are named),
-// tinyobjloader's parse errors, no triangles, more than `maxTriangles`, a
-// placed vertex that is not finite or lies outside the world bounds, a
-// triangle of zero area. Returns "" when the mesh is closed, else why not
+// them: an unreadable file, a refused token of a `v`, `f`, `l` or `p` line
+// (readObjText, obj_text.h: the line and the token are named), no
+// triangles, more than `maxTriangles`, a placed vertex that is not finite
+// or lies outside the world bounds, a triangle of zero area. Returns "" when the mesh is closed, else why not
 // (for a dielectric's message).
 std::string loadObjMesh(const json_fields::Source& c, const std::string& ptr, const std::filesystem::path& path,
                         const std::string& asWritten, const MeshTransform& transform, uint64_t maxTriangles,

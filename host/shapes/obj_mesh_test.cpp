@@ -1,6 +1,7 @@
-// The OBJ text checks of loadObjMesh: what tinyobjloader would quietly turn
-// into a different mesh (an index that wraps, nan read as 0, a number read
-// as its prefix) is refused, naming the file, the line and the token.
+// loadObjMesh's reading of OBJ text (obj_text.h): what a lenient reader
+// such as tinyobjloader quietly turns into a different mesh (an index that
+// wraps, nan read as 0, a number read as its prefix) is refused, naming the
+// file, the line and the token; what it accepts is read exactly.
 #include "shapes/obj_mesh.h"
 
 #include <atomic>
@@ -149,6 +150,47 @@ TEST_F(ObjMeshTest, AcceptedFormsKeepWorking) {
   ASSERT_EQ(s.triangles.size(), 2u);
   EXPECT_EQ(s.triangles[0], (std::array<uint32_t, 3>{0, 1, 2}));
   EXPECT_EQ(s.triangles[1], (std::array<uint32_t, 3>{0, 2, 1}));
+}
+
+TEST_F(ObjMeshTest, CoordinatesAreCorrectlyRounded) {
+  // The compiler's literals are correctly rounded. tinyobjloader read the
+  // first three as 0.30000000000000004, 0.12345670000000002 and
+  // 1.2345678901234565.
+  const Shape s = load(
+      "v 0.3 0.1234567 1.2345678901234567\n"
+      "v 1e-400 -2.4e-324 4.9e-324\n"
+      "v 0.000000000000000000000000000000000000000000000000001e50 7.0e-1 -.5e-0\n"
+      "f 1 2 3\n");
+  ASSERT_EQ(s.vertices.size(), 3u);
+  EXPECT_EQ(s.vertices[0], glm::dvec3(0.3, 0.1234567, 1.2345678901234567));
+  // Below half the least denormal: a zero (+0 once placed); the least
+  // denormal itself is kept.
+  EXPECT_EQ(s.vertices[1], glm::dvec3(0.0, 0.0, 4.9e-324));
+  EXPECT_EQ(s.vertices[2], glm::dvec3(0.1, 0.7, -0.5));
+}
+
+TEST_F(ObjMeshTest, PolygonsAreFansFromTheFirstCorner) {
+  const Shape s = load(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
+      "f 1 2 3 4\n"
+      "f 1 4 5\n"
+      "f -5 -4 -3 -2 -1\n");
+  ASSERT_EQ(s.triangles.size(), 6u);
+  const std::vector<std::array<uint32_t, 3>> expected = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4},
+                                                         {0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+  for (size_t k = 0; k < expected.size(); ++k) EXPECT_EQ(s.triangles[k], expected[k]) << "triangle " << k;
+}
+
+TEST_F(ObjMeshTest, PolylinesAndPointsAreCheckedButNotUsed) {
+  EXPECT_EQ(load(kTriangle + "l 1 2 3 1\np 1 -1\nl 2/1 3/1\nf 1 2 3\n").triangles.size(), 1u);
+  expectError(kTriangle + "l 1 0\nf 1 2 3\n",
+              "line 4, \"0\": polyline (l) 1 refers to vertex 0; OBJ numbers them from 1");
+  expectError(kTriangle + "f 1 2 3\np 1\np x\n",
+              "line 6, \"x\": point set (p) 2 has a corner that is not v, v/vt, v//vn or v/vt/vn");
+  expectError(kTriangle + "f 1 2 3\nl 1 7\n",
+              "line 5, \"7\": polyline (l) 1 refers to vertex 7, but the file has 3 vertices (1 to 3)");
+  expectError(kTriangle + "f 1 2 3\nl\n",
+              "line 5, \"l\": polyline (l) 1 has 0 corners; a polyline (l) needs at least 1");
 }
 
 TEST_F(ObjMeshTest, ForwardReferencesAreCheckedAgainstTheWholeFile) {

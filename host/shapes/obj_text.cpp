@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <fmt/format.h>
@@ -115,11 +116,19 @@ bool atLeastOne(std::string_view s) {
   return place >= 0;
 }
 
-bool overflowsDouble(std::string_view s) {
+// The number's correctly rounded double, for a token in OBJ syntax (see
+// isObjNumber); nullopt when its magnitude is beyond a double's range. One
+// too small for a denormal is a zero of its sign, as rounding makes it.
+std::optional<double> objNumberValue(std::string_view s) {
+  const bool negative = s[0] == '-';
   if (s[0] == '+') s.remove_prefix(1);  // from_chars takes no '+'
   double value = 0.0;
   const auto result = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
-  return result.ec == std::errc::result_out_of_range && atLeastOne(s);
+  if (result.ec == std::errc::result_out_of_range) {
+    if (atLeastOne(s)) return std::nullopt;
+    return negative ? -0.0 : 0.0;
+  }
+  return value;
 }
 
 // A whole number: its magnitude (saturated at 2^64 - 1, `beyond` set) and
@@ -146,47 +155,69 @@ std::string vertexNumber(const WholeNumber& n) {
   return n.beyond ? "a vertex beyond 2^64" : fmt::format("vertex {}", n.magnitude);
 }
 
-// The scan's state: counts so far, the first fault, the largest positive
-// vertex index and where it was.
-class Checker {
+// The elements whose corners are vertex indices: faces, and the polylines
+// and point sets, which are checked alike but not used.
+enum class Element { Face, Polyline, Points };
+
+constexpr const char* kElementNoun[3] = {"face", "polyline (l)", "point set (p)"};
+
+// The scan's state: what has been read, the first fault, the largest
+// positive vertex index and where it was.
+class Reader {
  public:
   void vertexLine(std::string_view line, std::string_view rest) {
-    ++result_.vertices;
     splitTokens(rest, tokens_);
     const auto& numbers = tokens_;
+    const uint64_t vertex = result_.vertices.size() + 1;
     if (numbers.size() != 3 && numbers.size() != 4 && numbers.size() != 6)
       return fail(line, fmt::format("vertex {} has {} numbers; a vertex is x y z, optionally followed by w or by r g b",
-                                    result_.vertices, numbers.size()));
-    for (std::string_view number : numbers) {
-      if (spellsNanOrInf(number))
-        return fail(number, fmt::format("vertex {} has a coordinate that is not finite (nan and inf are refused)",
-                                        result_.vertices));
-      if (!isObjNumber(number))
+                                    vertex, numbers.size()));
+    double position[3] = {};
+    for (size_t k = 0; k < numbers.size(); ++k) {
+      const std::string_view number = numbers[k];
+      if (!isObjNumber(number)) {
+        if (spellsNanOrInf(number))
+          return fail(number,
+                      fmt::format("vertex {} has a coordinate that is not finite (nan and inf are refused)", vertex));
         return fail(number, fmt::format("vertex {} has a coordinate that is not a number in OBJ syntax (a decimal "
                                         "such as -1.5 or 2.5e-3)",
-                                        result_.vertices));
-      if (overflowsDouble(number))
+                                        vertex));
+      }
+      const std::optional<double> value = objNumberValue(number);
+      if (!value)
         return fail(number, fmt::format("vertex {} has a coordinate that is not finite (beyond the range of a double)",
-                                        result_.vertices));
+                                        vertex));
+      if (k < 3) position[k] = *value;
     }
+    result_.vertices.emplace_back(position[0], position[1], position[2]);
   }
 
-  void faceLine(std::string_view line, std::string_view rest) {
-    ++result_.faces;
+  // A face, polyline or point set; a face's vertex indices are kept.
+  void elementLine(Element element, std::string_view line, std::string_view rest) {
+    element_ = element;
+    ++counts_[int(element)];
     splitTokens(rest, tokens_);
     const auto& corners = tokens_;
-    if (corners.size() < 3)
-      return fail(line, fmt::format("face {} has {} corners; a face needs at least 3", result_.faces, corners.size()));
-    for (std::string_view corner : corners)
-      if (!checkCorner(corner)) return;
+    const size_t least = element == Element::Face ? 3 : 1;
+    if (corners.size() < least)
+      return fail(line, fmt::format("{} has {} corners; a {} needs at least {}", elementName(), corners.size(),
+                                    kElementNoun[int(element)], least));
+    for (std::string_view corner : corners) {
+      uint32_t vertex = 0;
+      if (!readCorner(corner, vertex)) return;
+      if (element == Element::Face) result_.corners.push_back(vertex);
+    }
+    if (element == Element::Face) result_.cornerCounts.push_back(uint32_t(corners.size()));
   }
 
-  ObjTextCheck finish() {
-    if (!result_.fault && largest_.magnitude > result_.vertices)
+  ObjText finish() {
+    const uint64_t vertices = result_.vertices.size();
+    if (!result_.fault && largest_.magnitude > vertices)
       result_.fault = ObjTextFault{
-          largestLine_, largestToken_,
-          fmt::format("face {} refers to {}, but the file has {} vertices{}", largestFace_, vertexNumber(largest_),
-                      result_.vertices, result_.vertices ? fmt::format(" (1 to {})", result_.vertices) : "")};
+          largestLine_, shown(largestToken_),
+          fmt::format("{} {} refers to {}, but the file has {} vertices{}", kElementNoun[int(largestElement_)],
+                      largestCount_, vertexNumber(largest_), vertices,
+                      vertices ? fmt::format(" (1 to {})", vertices) : "")};
     return std::move(result_);
   }
 
@@ -194,12 +225,17 @@ class Checker {
   void atLine(uint64_t number) { line_ = number; }
 
  private:
+  // "face 3": the element being read, for messages.
+  std::string elementName() const { return fmt::format("{} {}", kElementNoun[int(element_)], counts_[int(element_)]); }
+
   void fail(std::string_view token, std::string what) {
     result_.fault = ObjTextFault{line_, shown(token), std::move(what)};
   }
 
-  // v, v/vt, v//vn or v/vt/vn.
-  bool checkCorner(std::string_view corner) {
+  // v, v/vt, v//vn or v/vt/vn. `vertex` is v's index from 0; for a positive
+  // index beyond the vertices read so far, the index (saturated), which
+  // finish() checks against the whole file's.
+  bool readCorner(std::string_view corner, uint32_t& vertex) {
     std::string_view parts[3];
     size_t count = 0;
     for (size_t start = 0;;) {
@@ -214,13 +250,16 @@ class Checker {
       const auto n = readWhole(parts[k]);
       if (!n) return badCorner(corner);
       if (!checkIndex(corner, k, *n)) return false;
+      if (k == 0)
+        vertex = uint32_t(n->negative ? result_.vertices.size() - n->magnitude
+                                      : std::min<uint64_t>(n->magnitude - 1, std::numeric_limits<uint32_t>::max()));
     }
     return true;
   }
 
   bool badCorner(std::string_view corner) {
-    fail(corner, fmt::format("face {} has a corner that is not v, v/vt, v//vn or v/vt/vn (each a whole number)",
-                             result_.faces));
+    fail(corner, fmt::format("{} has a corner that is not v, v/vt, v//vn or v/vt/vn (each a whole number)",
+                             elementName()));
     return false;
   }
 
@@ -229,31 +268,36 @@ class Checker {
     static constexpr const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
     if (n.magnitude == 0) {
       fail(corner,
-           fmt::format("face {} refers to {} 0; OBJ numbers them from 1 (or from -1 back)", result_.faces, kWhat[k]));
+           fmt::format("{} refers to {} 0; OBJ numbers them from 1 (or from -1 back)", elementName(), kWhat[k]));
       return false;
     }
     if (k != 0) return true;
-    if (n.negative && n.magnitude > result_.vertices) {
-      fail(corner,
-           fmt::format("face {} refers to vertex before the first ({} back from the {} vertices defined so far)",
-                       result_.faces, n.beyond ? "more than 2^64" : std::to_string(n.magnitude), result_.vertices));
+    const uint64_t defined = result_.vertices.size();
+    if (n.negative && n.magnitude > defined) {
+      fail(corner, fmt::format("{} refers to vertex before the first ({} back from the {} vertices defined so far)",
+                               elementName(), n.beyond ? "more than 2^64" : std::to_string(n.magnitude), defined));
       return false;
     }
     if (!n.negative && n.magnitude > largest_.magnitude) {
       largest_ = n;
       largestLine_ = line_;
-      largestToken_ = shown(corner);
-      largestFace_ = result_.faces;
+      largestToken_ = corner;  // a view of the text, which outlives the reader
+      largestElement_ = element_;
+      largestCount_ = counts_[int(element_)];
     }
     return true;
   }
 
-  ObjTextCheck result_;
+  ObjText result_;
   std::vector<std::string_view> tokens_;
+  Element element_ = Element::Face;
+  uint64_t counts_[3] = {};  // faces, polylines and point sets so far
   WholeNumber largest_;
   uint64_t line_ = 0;
-  uint64_t largestLine_ = 0, largestFace_ = 0;
-  std::string largestToken_;
+  uint64_t largestLine_ = 0;
+  std::string_view largestToken_;
+  Element largestElement_ = Element::Face;
+  uint64_t largestCount_ = 0;
 };
 
 }  // namespace
@@ -278,27 +322,28 @@ bool isObjNumber(std::string_view s) {
   return i == s.size();
 }
 
-ObjTextCheck checkObjText(std::string_view text) {
-  Checker checker;
+ObjText readObjText(std::string_view text) {
+  Reader reader;
   Lines lines(text);
   std::string_view line;
-  while (!checker.failed() && lines.next(line)) {
-    checker.atLine(lines.number());
-    // The keyword as tinyobjloader finds it ("v" then a space or tab); the
-    // rest up to a comment.
+  while (!reader.failed() && lines.next(line)) {
+    reader.atLine(lines.number());
+    // The keyword, the line's first word; the rest up to a comment.
     const size_t start = findNonBlank(line, 0);
     const size_t keywordEnd = findBlank(line, start);
     const std::string_view keyword = line.substr(start, keywordEnd - start);
-    if (keyword != "v" && keyword != "f") continue;
+    if (keyword.size() != 1) continue;
+    const char kind = keyword[0];
+    if (kind != 'v' && kind != 'f' && kind != 'l' && kind != 'p') continue;
     std::string_view rest = line.substr(keywordEnd);
     rest = rest.substr(0, rest.find('#'));
     const std::string_view whole = line.substr(start);
-    if (keyword == "v")
-      checker.vertexLine(whole, rest);
+    if (kind == 'v')
+      reader.vertexLine(whole, rest);
     else
-      checker.faceLine(whole, rest);
+      reader.elementLine(kind == 'f' ? Element::Face : kind == 'l' ? Element::Polyline : Element::Points, whole, rest);
   }
-  return checker.finish();
+  return reader.finish();
 }
 
 }  // namespace spectrace

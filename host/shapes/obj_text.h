@@ -1,16 +1,25 @@
 #pragma once
-// Inside the scene module: the checks on an OBJ file's text that
-// tinyobjloader does not make. It reads indices with atoi and numbers with
-// a parser that stops at the first character it does not expect, so an
-// index beyond an int's range wraps to another vertex, "nan" becomes 0 and
-// "1,5" becomes 1, all without a word. Patching that is not possible from
-// outside the library, so the `v` and `f` lines are tokenized here as
-// tinyobjloader splits them, and every token must be whole, in range and
-// finite; tinyobjloader still reads the values (obj_mesh.cpp).
+// Inside the shapes module: reading an OBJ file's text, its positions and
+// faces, checking every token on the way.
+//
+// Written here rather than taken from tinyobjloader (Debian's, which the
+// mesh reader used before), because a reader that checks must tokenize
+// every `v` and `f` line anyway, and tinyobjloader's own reading is not
+// what the file says: it reads indices with atoi and numbers with a parser
+// that stops at the first character it does not expect, so an index beyond
+// an int's range wraps to another vertex, "nan" becomes 0 and "1,5" becomes
+// 1, all without a word; and it builds each number from its digits with a
+// power of ten a digit, which is not correctly rounded (two thirds of the
+// benchmark sphere's 17-digit coordinates came out an ulp or more off) and
+// took most of a million-triangle mesh's load. Here each coordinate is
+// std::from_chars's correctly rounded double, read once.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace spectrace {
 
@@ -30,20 +39,28 @@ struct ObjTextFault {
   std::string what;
 };
 
-struct ObjTextCheck {
-  std::optional<ObjTextFault> fault;
-  uint64_t vertices = 0;  // `v` lines
-  uint64_t faces = 0;     // `f` lines
+// What an OBJ file's text describes. Without a fault, every corner is a
+// vertex of the file.
+struct ObjText {
+  std::optional<ObjTextFault> fault;   // the first refusal; the rest is then not read
+  std::vector<glm::dvec3> vertices;    // each `v` line's x y z, in file order
+  std::vector<uint32_t> corners;       // the faces' vertex indices (vertex 1 is 0), face after face
+  std::vector<uint32_t> cornerCounts;  // each face's number of corners (at least 3), in file order
 };
 
-// Checks every `v` line (3, 4 or 6 OBJ numbers, all finite) and `f` line
-// (at least 3 corners v, v/vt, v//vn or v/vt/vn; vertex indices from 1, or
-// negative counting back from the last vertex defined so far, never beyond
-// the file's vertices; texture and normal indices, which are not used, must
-// be whole numbers other than 0). Lines end at "\n", "\r\n" or "\r", as for
-// tinyobjloader; "#" starts a comment. The fault reported is the first in
-// file order, except for a positive index beyond the file's vertices, which
-// is known only at the end: then the largest such index is named.
-ObjTextCheck checkObjText(std::string_view text);
+// Reads every `v` line (3, 4 or 6 OBJ numbers, all finite; the first three
+// are the position, correctly rounded; one that underflows a double is a
+// zero of its sign) and `f` line (at least 3 corners v, v/vt, v//vn or
+// v/vt/vn; vertex indices from 1, or negative counting back from the last
+// vertex defined so far, never beyond the file's vertices; texture and
+// normal indices, which are not used, must be whole numbers other than 0).
+// `l` and `p` lines (polylines and points, not used) must hold the same
+// kind of corners. Other lines (vt, vn, g, o, s, usemtl, mtllib, ...) are
+// not used. Lines end at "\n", "\r\n" or "\r"; a line's keyword is its
+// first word (words part at spaces and tabs); "#" starts a comment. The
+// fault reported is the first in file order, except for a positive index
+// beyond the file's vertices, which is known only at the end: then the
+// largest such index is named.
+ObjText readObjText(std::string_view text);
 
 }  // namespace spectrace
