@@ -240,22 +240,30 @@ class Builder {
     for (int axis = 0; axis < 3; ++axis) {
       if (!spread[axis]) continue;
       // Sweep from the right for the right-hand areas, then from the left.
+      // Empty bins are passed over: a split just after one costs the same
+      // as the split just before it, which the strict comparison keeps, and
+      // small nodes (most of a tree's) leave most bins empty.
       std::array<double, kBins> rightArea{};
       std::array<uint32_t, kBins> rightCount{};
       Box right;
+      double rightHalfArea = right.halfArea();
       uint32_t count = 0;
       for (int b = kBins - 1; b > 0; --b) {
-        right.extend(binBoxes[axis][b]);
-        count += binCounts[axis][b];
-        rightArea[b] = right.halfArea();
+        if (binCounts[axis][b] != 0) {
+          right.extend(binBoxes[axis][b]);
+          count += binCounts[axis][b];
+          rightHalfArea = right.halfArea();
+        }
+        rightArea[b] = rightHalfArea;
         rightCount[b] = count;
       }
       Box left;
       count = 0;
       for (int b = 0; b < kBins - 1; ++b) {
+        if (binCounts[axis][b] == 0) continue;
         left.extend(binBoxes[axis][b]);
         count += binCounts[axis][b];
-        if (count == 0 || rightCount[b + 1] == 0) continue;
+        if (rightCount[b + 1] == 0) continue;
         const double cost = kTraversalCost + (count * left.halfArea() + rightCount[b + 1] * rightArea[b + 1]) / area;
         if (cost < best.cost) best = Split{axis, b, count, cost};
       }

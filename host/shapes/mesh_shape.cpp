@@ -124,11 +124,14 @@ void place(const Shape& shape, const CameraFrame& frame, uint32_t material, std:
   // The camera frame (right = forward x up, up, forward) is a mirror image
   // of the world, so a triangle's corners are taken in the other order
   // there: counter-clockwise from outside stays outwards.
+  // Each vertex is moved once, not once for each triangle it is a corner of
+  // (about six in a closed mesh): the same numbers.
+  std::vector<glm::dvec3> local(shape.vertices.size());
+  for (size_t i = 0; i < local.size(); ++i) local[i] = frame.pointToLocal(shape.vertices[i]);
+  out.reserve(out.size() + shape.triangles.size());
   for (const auto& t : shape.triangles) {
     PlacedPrimitive triangle;
-    if (placeTriangle(frame.pointToLocal(shape.vertices[t[0]]), frame.pointToLocal(shape.vertices[t[2]]),
-                      frame.pointToLocal(shape.vertices[t[1]]), material, triangle))
-      out.push_back(triangle);
+    if (placeTriangle(local[t[0]], local[t[2]], local[t[1]], material, triangle)) out.push_back(triangle);
   }
 }
 
