@@ -181,6 +181,14 @@ TEST_F(ObjMeshTest, PolygonsAreFansFromTheFirstCorner) {
   for (size_t k = 0; k < expected.size(); ++k) EXPECT_EQ(s.triangles[k], expected[k]) << "triangle " << k;
 }
 
+TEST_F(ObjMeshTest, ByteOrderMarkIsNotPartOfTheFirstLine) {
+  const Shape s = load("\xEF\xBB\xBF" + kTriangle + "f 1 2 3\n");
+  ASSERT_EQ(s.vertices.size(), 3u);
+  EXPECT_EQ(s.vertices[0], glm::dvec3(0.0, 0.0, 0.0));
+  // Only at the start: elsewhere it is a keyword of its own, not used.
+  EXPECT_EQ(load(kTriangle + "\xEF\xBB\xBFv 5 5 5\nf 1 2 3\n").vertices.size(), 3u);
+}
+
 TEST_F(ObjMeshTest, PolylinesAndPointsAreCheckedButNotUsed) {
   EXPECT_EQ(load(kTriangle + "l 1 2 3 1\np 1 -1\nl 2/1 3/1\nf 1 2 3\n").triangles.size(), 1u);
   expectError(kTriangle + "l 1 0\nf 1 2 3\n",

@@ -323,6 +323,9 @@ bool isObjNumber(std::string_view s) {
 }
 
 ObjText readObjText(std::string_view text) {
+  // A UTF-8 byte order mark, which some exporters write, would otherwise
+  // join the first line's keyword, and a first `v` line would go unread.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   Reader reader;
   Lines lines(text);
   std::string_view line;

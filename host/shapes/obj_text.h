@@ -56,11 +56,12 @@ struct ObjText {
 // normal indices, which are not used, must be whole numbers other than 0).
 // `l` and `p` lines (polylines and points, not used) must hold the same
 // kind of corners. Other lines (vt, vn, g, o, s, usemtl, mtllib, ...) are
-// not used. Lines end at "\n", "\r\n" or "\r"; a line's keyword is its
-// first word (words part at spaces and tabs); "#" starts a comment. The
-// fault reported is the first in file order, except for a positive index
-// beyond the file's vertices, which is known only at the end: then the
-// largest such index is named.
+// not used. A UTF-8 byte order mark at the start is passed over. Lines end
+// at "\n", "\r\n" or "\r"; a line's keyword is its first word (words part
+// at spaces and tabs); "#" starts a comment. The fault reported is the
+// first in file order, except for a positive index beyond the file's
+// vertices, which is known only at the end: then the largest such index is
+// named.
 ObjText readObjText(std::string_view text);
 
 }  // namespace spectrace
