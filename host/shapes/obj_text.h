@@ -11,7 +11,7 @@
 // 1, all without a word; and it builds each number from its digits with a
 // power of ten a digit, which is not correctly rounded (two thirds of the
 // benchmark sphere's 17-digit coordinates came out an ulp or more off) and
-// took most of a million-triangle mesh's load. Here each coordinate is
+// took over a third of a million-triangle mesh's load. Here each coordinate is
 // std::from_chars's correctly rounded double, read once.
 #include <cstdint>
 #include <optional>
