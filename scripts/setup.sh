@@ -10,6 +10,7 @@ packages=(
   libglm-dev libopenexr-dev libpng-dev                           # maths and image files
   nlohmann-json3-dev libcli11-dev libfmt-dev libssl-dev          # scene files, CLI, formatting, SHA-256
   librandom123-dev libgtest-dev libboost-dev                     # Philox, tests, chi-square p-values
+  libboost-context-dev                                           # the CPU reference's fibers
   gnuplot-nox                                                    # benchmark plots
   libopenmpi-dev openmpi-bin                                     # render --mpi (mpirun)
   libtinyobjloader-dev                                           # OBJ meshes in e500837 (scripts/*_against_base.sh)

@@ -124,6 +124,11 @@ FN void keepNearerHit(float t, uint primitive, INOUT(ObjectHit) hit, INOUT(bool)
 // index wins, so the hit does not depend on the order of the walk. With
 // anyHit, returns at the first one (visibility tests).
 FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, OUT(ObjectHit) hit) {
+#ifdef SPECTRACE_CPU_WALK_STEP
+  // The CPU's own walk, the same hit (host/kernel/beam_kernel.h:
+  // cpuIntersectObjects); portableWalk keeps this text for tests.
+  if (!portableWalk) return cpuIntersectObjects(origin, direction, tMax, anyHit, hit);
+#endif
   hit.t = tMax;
   hit.primitive = 0u;
   bool found = false;
@@ -133,61 +138,38 @@ FN bool intersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, O
   uint depth = 0u;
   uint child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
   uint count = constants.bvhRootLeaf;
-#ifdef SPECTRACE_CPU_WALK_STEP
-  const WalkRay walkRay = walkRayOf(origin, inverse);
-#endif
   while (true) {
     if (count > 0u) {
-#ifdef SPECTRACE_CPU_WALK_STEP
-      // The CPU's lanes for a leaf of triangles, the same hit
-      // (host/kernel/wide_walk.h).
-      if (portableWalk ||
-          !nearestTriangleInLeaf(origin, direction, primitives.data() + child, child, count,
-                                 [&](float t, uint primitive) { keepNearerHit(t, primitive, hit, found); }))
-#endif
       for (uint i = 0u; i < count; ++i)
         keepNearerHit(intersectPrimitive(origin, direction, readPrimitive(child + i)), child + i, hit, found);
       if (found && anyHit) break;
     } else {
-#ifdef SPECTRACE_CPU_WALK_STEP
-      // The CPU's vector form of the step below, the same children in the
-      // same order (host/kernel/wide_walk.h): the nearest, which the step
-      // below would push and pop at once, is visited directly.
-      // portableWalk keeps this text for tests.
-      if (!portableWalk) {
-        if (nearestChildMet(walkRay, bvhNodes[child], hit.t, stackEntry, stackEnter, depth, child, count,
-                            [this](uint c, uint n) { prefetchBvhChild(c, n); }))
-          continue;
-      } else
-#endif
-      {
-        BvhNode node = readBvhNode(child);
-        vec4 enter;
-        vec4 leave;
-        rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
-        // Children the ray misses (and empty slots) sort last, at 3.4e38
-        // (beyond any reach: tMax is at most 3.0e38). A fixed network of
-        // five compare-exchanges sorts the rest near to far: the same steps
-        // in every lane, where an insertion sort's loop would diverge.
-        bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
-        met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
-                    met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
-        vec4 key = vec4(met.x ? enter.x : 3.4e38f, met.y ? enter.y : 3.4e38f, met.z ? enter.z : 3.4e38f,
-                        met.w ? enter.w : 3.4e38f);
-        uvec4 slot = uvec4(0u, 1u, 2u, 3u);
-        sortChildPair(key, slot, 0, 1);
-        sortChildPair(key, slot, 2, 3);
-        sortChildPair(key, slot, 0, 2);
-        sortChildPair(key, slot, 1, 3);
-        sortChildPair(key, slot, 1, 2);
-        // Far to near onto the stack, the nearest on top.
-        for (int k = 3; k >= 0; --k) {
-          if (key[k] == 3.4e38f) continue;
-          stackEntry[depth] = (node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]];
-          stackEnter[depth] = key[k];
-          depth += 1u;
-          prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
-        }
+      BvhNode node = readBvhNode(child);
+      vec4 enter;
+      vec4 leave;
+      rayMeetsChildren(origin, inverse, node, hit.t, enter, leave);
+      // Children the ray misses (and empty slots) sort last, at 3.4e38
+      // (beyond any reach: tMax is at most 3.0e38). A fixed network of
+      // five compare-exchanges sorts the rest near to far: the same steps
+      // in every lane, where an insertion sort's loop would diverge.
+      bvec4 met = bvec4(enter.x <= leave.x, enter.y <= leave.y, enter.z <= leave.z, enter.w <= leave.w);
+      met = bvec4(met.x && (node.count.x > 0u || node.child.x > 0u), met.y && (node.count.y > 0u || node.child.y > 0u),
+                  met.z && (node.count.z > 0u || node.child.z > 0u), met.w && (node.count.w > 0u || node.child.w > 0u));
+      vec4 key = vec4(met.x ? enter.x : 3.4e38f, met.y ? enter.y : 3.4e38f, met.z ? enter.z : 3.4e38f,
+                      met.w ? enter.w : 3.4e38f);
+      uvec4 slot = uvec4(0u, 1u, 2u, 3u);
+      sortChildPair(key, slot, 0, 1);
+      sortChildPair(key, slot, 2, 3);
+      sortChildPair(key, slot, 0, 2);
+      sortChildPair(key, slot, 1, 3);
+      sortChildPair(key, slot, 1, 2);
+      // Far to near onto the stack, the nearest on top.
+      for (int k = 3; k >= 0; --k) {
+        if (key[k] == 3.4e38f) continue;
+        stackEntry[depth] = (node.child[slot[k]] << kBvhCountBits) | node.count[slot[k]];
+        stackEnter[depth] = key[k];
+        depth += 1u;
+        prefetchBvhChild(node.child[slot[k]], node.count[slot[k]]);
       }
     }
     // The nearest entry that the closest hit so far leaves in reach (with

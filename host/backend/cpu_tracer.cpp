@@ -9,7 +9,12 @@
 #include <cstdint>
 
 #include <sys/mman.h>
+#include <charconv>
+#include <fstream>
+#include <string>
+#include <string_view>
 
+#include "backend/walk_interleaver.h"
 #include "kernel/beam_kernel.h"
 
 namespace spectrace {
@@ -35,6 +40,8 @@ void HugePageAllocator<T>::deallocate(T* p, size_t n) {
 }
 
 template struct HugePageAllocator<uint64_t>;
+template struct HugePageAllocator<device::BvhNode>;
+template struct HugePageAllocator<device::Primitive>;
 
 namespace {
 
@@ -46,26 +53,68 @@ struct CountQueues {
   size_t filling = 0;
 };
 
-// Beams firstBeam + [from, to) through `kernel` (whose pending adds go to `queues`),
-// the whole kernel or the profile's stage; returns the beams counted. Its
-// two copies below differ only in their target: each is flattened (every
-// call inlined), so the whole kernel is compiled into each, and no shared
-// inline function is emitted out of line with another target's
-// instructions (which the linker might then pick for the baseline).
-// (Offsets from firstBeam, so that a range ending at 2^64 does not wrap.)
-inline uint64_t traceBlockBody(device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam, uint64_t from,
-                               uint64_t to, uint32_t profileStage) {
-  kernel.pending = &queues.groups[queues.filling];
+// The beams of one trace(), in blocks that threads claim in order. When
+// cancelled, a thread claims no further block, and the beams of those it
+// has claimed are all traced, so the traced beams stay one contiguous
+// prefix.
+struct BlockClaims {
+  uint64_t beamCount;
+  uint64_t blockBeams;
+  uint64_t blockCount;
+  const std::atomic<bool>* cancel;
+  std::atomic<uint64_t> nextBlock{0};
+  std::atomic<uint64_t> stoppedAtBlock;
+};
+
+// A thread's beams: those of the block it holds, then the next it claims.
+class BeamSource {
+ public:
+  explicit BeamSource(BlockClaims& claims) : claims_(claims) {}
+  bool take(uint64_t& beam) {
+    if (next_ == end_ && !claimBlock()) return false;
+    beam = next_++;
+    return true;
+  }
+
+ private:
+  __attribute__((noinline)) bool claimBlock() {
+    const uint64_t block = claims_.nextBlock.fetch_add(1, std::memory_order_relaxed);
+    if (block >= claims_.blockCount) return false;
+    if (claims_.cancel && claims_.cancel->load(std::memory_order_relaxed)) {
+      uint64_t expected = claims_.stoppedAtBlock.load();
+      while (block < expected && !claims_.stoppedAtBlock.compare_exchange_weak(expected, block)) {}
+      return false;
+    }
+    next_ = block * claims_.blockBeams;
+    end_ = std::min(claims_.beamCount, next_ + claims_.blockBeams);
+    return true;
+  }
+  BlockClaims& claims_;
+  uint64_t next_ = 0;
+  uint64_t end_ = 0;
+};
+
+// The beams `source` gives (offsets from firstBeam, so that a range ending
+// at 2^64 does not wrap) through `kernel`, whose pending adds go to
+// `queues`: the whole kernel or the profile's stage; returns the beams
+// counted. Its copies below differ only in their target: each is
+// flattened (every call inlined), so the whole kernel is compiled into
+// each, and no shared inline function is emitted out of line with another
+// target's instructions (which the linker might then pick for the
+// baseline). With interleaved walks, each of a thread's fibers runs it
+// over the thread's one source and queues.
+inline uint64_t traceBeamsBody(device::BeamKernel& kernel, CountQueues& queues, BeamSource& source,
+                               uint64_t firstBeam, uint32_t profileStage) {
   const bool wholeKernel = profileStage == device::kProfileStageFull;
   uint64_t counted = 0;
-  for (uint64_t i = from; i < to; ++i) {
+  for (uint64_t i; source.take(i);) {
+    kernel.pending = &queues.groups[queues.filling];
     const bool hit =
         wholeKernel ? kernel.traceAndCountBeam(firstBeam + i) : kernel.profileBeam(firstBeam + i, profileStage);
     counted += hit ? 1 : 0;
     if (queues.groups[queues.filling].full()) {
       queues.filling ^= 1;
       queues.groups[queues.filling].flush();
-      kernel.pending = &queues.groups[queues.filling];
     }
   }
   return counted;
@@ -76,7 +125,7 @@ inline void recordBeamsBody(device::BeamKernel& kernel, uint64_t first, uint32_t
   for (uint32_t i = 0; i < count; ++i) records[i] = kernel.record(first + i);
 }
 
-// flatten inlines the whole kernel into each of the four entry points below,
+// flatten inlines the whole kernel into each of the entry points below,
 // which is what makes the CPU reference fast. Under AddressSanitizer it
 // makes this one file take over four minutes to compile (four instrumented
 // copies of the kernel), and speed is not what that build is for: there the
@@ -95,10 +144,11 @@ inline void recordBeamsBody(device::BeamKernel& kernel, uint64_t first, uint32_t
 #define SPECTRACE_FLATTEN __attribute__((flatten))
 #endif
 
-SPECTRACE_FLATTEN uint64_t traceBlockBaseline(device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam,
-                                              uint64_t from, uint64_t to, uint32_t profileStage) {
-  return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
+SPECTRACE_FLATTEN uint64_t traceBeamsBaseline(device::BeamKernel& kernel, CountQueues& queues, BeamSource& source,
+                                              uint64_t firstBeam, uint32_t profileStage) {
+  return traceBeamsBody(kernel, queues, source, firstBeam, profileStage);
 }
+SPECTRACE_FLATTEN void runInterleavedBaseline(WalkInterleaver& interleaver) { runInterleaved(interleaver); }
 SPECTRACE_FLATTEN void recordBeamsBaseline(device::BeamKernel& kernel, uint64_t first, uint32_t count,
                                            device::BeamRecord* records) {
   recordBeamsBody(kernel, first, count, records);
@@ -106,11 +156,15 @@ SPECTRACE_FLATTEN void recordBeamsBaseline(device::BeamKernel& kernel, uint64_t 
 
 #if defined(__x86_64__)
 #define SPECTRACE_HAS_X86_64_V3 1
-SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) uint64_t traceBlockV3(device::BeamKernel& kernel,
+SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) uint64_t traceBeamsV3(device::BeamKernel& kernel,
                                                                                   CountQueues& queues,
-                                                                                  uint64_t firstBeam, uint64_t from,
-                                                                                  uint64_t to, uint32_t profileStage) {
-  return traceBlockBody(kernel, queues, firstBeam, from, to, profileStage);
+                                                                                  BeamSource& source,
+                                                                                  uint64_t firstBeam,
+                                                                                  uint32_t profileStage) {
+  return traceBeamsBody(kernel, queues, source, firstBeam, profileStage);
+}
+SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) void runInterleavedV3(WalkInterleaver& interleaver) {
+  runInterleaved(interleaver);
 }
 SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) void recordBeamsV3(device::BeamKernel& kernel,
                                                                                uint64_t first, uint32_t count,
@@ -121,12 +175,19 @@ SPECTRACE_FLATTEN __attribute__((target("arch=x86-64-v3"))) void recordBeamsV3(d
 #define SPECTRACE_HAS_X86_64_V3 0
 #endif
 
-uint64_t traceBlock(CpuCode code, device::BeamKernel& kernel, CountQueues& queues, uint64_t firstBeam, uint64_t from,
-                    uint64_t to, uint32_t profileStage) {
+uint64_t traceBeams(CpuCode code, device::BeamKernel& kernel, CountQueues& queues, BeamSource& source,
+                    uint64_t firstBeam, uint32_t profileStage) {
 #if SPECTRACE_HAS_X86_64_V3
-  if (code == CpuCode::X86_64_V3) return traceBlockV3(kernel, queues, firstBeam, from, to, profileStage);
+  if (code == CpuCode::X86_64_V3) return traceBeamsV3(kernel, queues, source, firstBeam, profileStage);
 #endif
-  return traceBlockBaseline(kernel, queues, firstBeam, from, to, profileStage);
+  return traceBeamsBaseline(kernel, queues, source, firstBeam, profileStage);
+}
+
+void runInterleaved(CpuCode code, WalkInterleaver& interleaver) {
+#if SPECTRACE_HAS_X86_64_V3
+  if (code == CpuCode::X86_64_V3) return runInterleavedV3(interleaver);
+#endif
+  runInterleavedBaseline(interleaver);
 }
 
 void recordBeams(CpuCode code, device::BeamKernel& kernel, uint64_t first, uint32_t count, device::BeamRecord* records) {
@@ -168,11 +229,49 @@ std::optional<CpuCode> cpuCodeNamed(std::string_view name) {
   return std::nullopt;
 }
 
-CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage, CpuCode code)
+namespace {
+
+// The last-level cache of the first processor, as the kernel describes it
+// in sysfs (the C library's figure can be the whole package's: 320 MiB on
+// a virtual machine whose cores share 32 MiB); 0 where it cannot tell.
+size_t lastLevelCacheBytes() {
+  size_t bytes = 0;
+  unsigned level = 0;
+  for (int index = 0; index < 8; ++index) {
+    const std::string dir = fmt::format("/sys/devices/system/cpu/cpu0/cache/index{}/", index);
+    std::ifstream levelFile(dir + "level"), sizeFile(dir + "size");
+    unsigned l = 0;
+    std::string size;
+    if (!(levelFile >> l) || !(sizeFile >> size) || l < level) continue;
+    size_t value = 0;
+    const auto [end, error] = std::from_chars(size.data(), size.data() + size.size(), value);
+    if (error != std::errc() || value == 0) continue;
+    const std::string_view unit(end, size.data() + size.size());
+    const size_t scale = unit == "K" ? size_t(1) << 10 : unit == "M" ? size_t(1) << 20 : unit.empty() ? 1 : 0;
+    if (scale == 0) continue;
+    level = l;
+    bytes = value * scale;
+  }
+  return bytes;
+}
+
+bool interleaves(WalkInterleaving interleaving, const DeviceScene& scene, uint32_t profileStage) {
+  if (interleaving != WalkInterleaving::Automatic) return interleaving == WalkInterleaving::Always;
+  const size_t treeBytes =
+      scene.bvhNodes.size() * sizeof(device::BvhNode) + scene.primitives.size() * sizeof(device::Primitive);
+  static const size_t cacheBytes = lastLevelCacheBytes();
+  return profileStage == device::kProfileStageFull && cacheBytes > 0 && treeBytes > cacheBytes;
+}
+
+}  // namespace
+
+CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profileStage, CpuCode code,
+                     WalkInterleaving interleaving)
     : plan_(plan),
       threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
       profileStage_(std::min<uint32_t>(profileStage, device::kProfileStageObjectsNoConnection)),
       code_(code),
+      interleaveWalks_(interleaves(interleaving, plan.device, profileStage_)),
       counters_(plan.film.storedCounterCount()) {  // zero, untouched (HugePageAllocator)
   if (!cpuRuns(code))
     throw std::invalid_argument(fmt::format("CpuTracer: this processor cannot run the {} code", cpuCodeName(code)));
@@ -181,6 +280,13 @@ CpuTracer::CpuTracer(const CompiledScene& plan, unsigned threads, uint32_t profi
   // The profile's counting stage counts bins only (shaders/profile.h).
   if (profileStage_ <= device::kProfileStageCounting) plan_.device.constants.exactColour = 0;
   if (profileStage_ == device::kProfileStageObjectsNoConnection) plan_.device.constants.connect = 0;
+  // The tree on huge pages too: a walk reads a few nodes and primitives
+  // from all over it, and with 4 KiB pages most reads of a large tree also
+  // miss the TLB. (Moved, so the tracer holds one copy.)
+  bvhNodes_.assign(plan_.device.bvhNodes.begin(), plan_.device.bvhNodes.end());
+  primitives_.assign(plan_.device.primitives.begin(), plan_.device.primitives.end());
+  std::vector<device::BvhNode>().swap(plan_.device.bvhNodes);
+  std::vector<device::Primitive>().swap(plan_.device.primitives);
 }
 
 std::string CpuTracer::deviceName() const {
@@ -190,28 +296,25 @@ std::string CpuTracer::deviceName() const {
 uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::atomic<bool>* cancel) {
   const device::BeamKernel kernel = beamKernel(counters_);
   std::atomic<uint64_t> counted{0};
-  // Threads take blocks of beams in order. When cancelled, each finishes
-  // its block, so the traced beams stay one contiguous prefix. Blocks are
-  // small enough that every thread gets several (a short batch keeps both
-  // cores busy) and a cancel is seen soon; the counts do not depend on them.
+  // Blocks are small enough that every thread gets several (a short batch
+  // keeps both cores busy) and a cancel is seen soon; the counts do not
+  // depend on them.
   const uint64_t blockBeams = std::clamp<uint64_t>(beamCount / (uint64_t(threads_) * 4), 1 << 8, 1 << 16);
   const uint64_t blockCount = (beamCount + blockBeams - 1) / blockBeams;
-  std::atomic<uint64_t> nextBlock{0};
-  std::atomic<uint64_t> stoppedAtBlock{blockCount};
+  BlockClaims claims{beamCount, blockBeams, blockCount, cancel, {0}, {blockCount}};
   auto worker = [&] {
-    device::BeamKernel local = kernel;
     CountQueues queues(counters_);
+    BeamSource source(claims);
     uint64_t countedHere = 0;
-    for (;;) {
-      const uint64_t block = nextBlock.fetch_add(1, std::memory_order_relaxed);
-      if (block >= blockCount) break;
-      if (cancel && cancel->load(std::memory_order_relaxed)) {
-        uint64_t expected = stoppedAtBlock.load();
-        while (block < expected && !stoppedAtBlock.compare_exchange_weak(expected, block)) {}
-        break;
-      }
-      const uint64_t end = std::min(beamCount, (block + 1) * blockBeams);
-      countedHere += traceBlock(code_, local, queues, firstBeam, block * blockBeams, end, profileStage_);
+    if (interleaveWalks_) {
+      WalkInterleaver interleaver(kernel, kBeamsInFlight, [&](device::BeamKernel& fiberKernel) {
+        return traceBeams(code_, fiberKernel, queues, source, firstBeam, profileStage_);
+      });
+      runInterleaved(code_, interleaver);
+      countedHere = interleaver.counted();
+    } else {
+      device::BeamKernel local = kernel;
+      countedHere = traceBeams(code_, local, queues, source, firstBeam, profileStage_);
     }
     queues.groups[0].flush();
     queues.groups[1].flush();
@@ -222,13 +325,13 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
   worker();
   pool.clear();  // joins
   countedBeams_ += counted.load();
-  return std::min(beamCount, stoppedAtBlock.load() * blockBeams);
+  return std::min(beamCount, claims.stoppedAtBlock.load() * blockBeams);
 }
 
 device::BeamKernel CpuTracer::beamKernel(std::span<uint64_t> counters) const {
   const DeviceScene& scene = plan_.device;
   device::BeamKernel kernel(scene.constants, scene.lights, scene.intervals, scene.aliasColumns, scene.cmfTable, counters);
-  kernel.setObjects(scene.primitives, scene.bvhNodes, scene.materials, scene.data.words());
+  kernel.setObjects(primitives_, bvhNodes_, scene.materials, scene.data.words());
   return kernel;
 }
 

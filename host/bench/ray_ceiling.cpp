@@ -93,6 +93,35 @@ void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingR
   });
 }
 
+void traceSpectraceInterleaved(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
+                               std::span<CeilingHit> hits, unsigned threads) {
+  device::TraceConstants constants{};
+  constants.objectPrimitives = uint32_t(geometry.primitives.size());
+  forEachBlock(rays.size(), threads, [&](size_t begin, size_t end) {
+    device::BeamKernel kernel(constants, {}, {}, {});
+    kernel.setObjects(geometry.primitives, geometry.nodes, {}, {});
+    std::vector<device::BeamKernel::WalkState> walks(kCeilingWalksInFlight);
+    constexpr size_t kIdle = SIZE_MAX;
+    std::vector<size_t> rayOf(kCeilingWalksInFlight, kIdle);
+    size_t next = begin, live = 0;
+    const auto start = [&](size_t k) {
+      kernel.startWalk(walks[k], rays[next].origin, rays[next].direction, kFar, false);
+      rayOf[k] = next++;
+      ++live;
+    };
+    for (size_t k = 0; k < kCeilingWalksInFlight && next < end; ++k) start(k);
+    while (live > 0) {
+      for (size_t k = 0; k < kCeilingWalksInFlight; ++k) {
+        if (rayOf[k] == kIdle || kernel.stepWalk(walks[k])) continue;
+        hits[rayOf[k]] = {walks[k].found, walks[k].hit.primitive, walks[k].hit.t};
+        rayOf[k] = kIdle;
+        --live;
+        if (next < end) start(k);
+      }
+    }
+  });
+}
+
 HitComparison compareHits(std::span<const CeilingHit> a, std::span<const CeilingHit> b, double relative) {
   HitComparison c;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -226,15 +255,25 @@ RayCeilingRow runRayCeiling(uint64_t triangles, uint64_t rayCount, unsigned thre
   // Interleaved rounds, least of each, so a neighbour's load on the shared
   // cores touches every variant alike.
   constexpr int kRounds = 2;
-  row.spectrace1 = row.spectraceN = row.embree1 = row.embreeN = INFINITY;
+  row.spectrace1 = row.spectraceN = row.embree1 = row.embreeN = row.interleaved1 = row.interleavedN = INFINITY;
+  std::vector<CeilingHit> interleaved(rays.size());
   for (int round = 0; round < kRounds && !cancel.load(); ++round) {
     row.spectrace1 = std::min(row.spectrace1, secondsOf([&] { traceSpectrace(geometry, rays, ours, 1); }));
     row.spectraceN = std::min(row.spectraceN, secondsOf([&] { traceSpectrace(geometry, rays, ours, row.threads); }));
+    row.interleaved1 =
+        std::min(row.interleaved1, secondsOf([&] { traceSpectraceInterleaved(geometry, rays, interleaved, 1); }));
+    row.interleavedN = std::min(
+        row.interleavedN, secondsOf([&] { traceSpectraceInterleaved(geometry, rays, interleaved, row.threads); }));
     if (!embree) continue;
     row.embree1 = std::min(row.embree1, secondsOf([&] { embree->trace(rays, theirs, 1); }));
     row.embreeN = std::min(row.embreeN, secondsOf([&] { embree->trace(rays, theirs, row.threads); }));
   }
   for (const CeilingHit& h : ours) row.hits += h.hit ? 1 : 0;
+  // The same walks, so the same hits, bit for bit.
+  for (size_t i = 0; i < rays.size(); ++i)
+    if (interleaved[i].hit != ours[i].hit || interleaved[i].primitive != ours[i].primitive ||
+        interleaved[i].t != ours[i].t)
+      ++row.interleavedDifferences;
   if (embree) row.disagreements = compareHits(ours, theirs);
   return row;
 }

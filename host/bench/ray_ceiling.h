@@ -53,6 +53,12 @@ std::vector<CeilingRay> incoherentRays(const RayCeilingGeometry& geometry, uint6
 // shared kernel's intersectObjects.
 void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
                     unsigned threads);
+// The same hits, each thread stepping kCeilingWalksInFlight walks in turn
+// (BeamKernel::stepWalk), as the CPU reference's threads do with their
+// beams' walks on a large tree (backend/walk_interleaver.h).
+constexpr size_t kCeilingWalksInFlight = 8;
+void traceSpectraceInterleaved(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
+                               std::span<CeilingHit> hits, unsigned threads);
 
 // Whether the build has Embree (CMake option SPECTRACE_EMBREE, on when
 // Embree 3 is found).
@@ -92,11 +98,17 @@ struct RayCeilingRow {
   double bytesPerTriangle = 0.0, embreeBytesPerTriangle = 0.0;
   // Least of the rounds, in seconds, on one thread and on `threads`.
   double spectrace1 = 0.0, spectraceN = 0.0, embree1 = 0.0, embreeN = 0.0;
+  // spectrace with kCeilingWalksInFlight walks in turn on each thread (as
+  // the CPU reference's threads walk a tree larger than the L2 cache).
+  double interleaved1 = 0.0, interleavedN = 0.0;
+  uint64_t interleavedDifferences = 0;  // rays whose hit differs from one walk at a time (none expected)
   double embreeBuildSeconds = 0.0;
   HitComparison disagreements;
   // spectrace : Embree in rays per second (the first over the second).
   double ratio1() const { return embree1 / spectrace1; }
   double ratioN() const { return embreeN / spectraceN; }
+  double interleavedRatio1() const { return embree1 / interleaved1; }
+  double interleavedRatioN() const { return embreeN / interleavedN; }
 };
 RayCeilingRow runRayCeiling(uint64_t triangles, uint64_t rays, unsigned threads, const std::atomic<bool>& cancel);
 

@@ -142,6 +142,8 @@ void writeRayCeilingCsv(const std::filesystem::path& file, const std::vector<Ray
     };
     line("spectrace", 1, r.spectrace1, r.bytesPerTriangle, 1.0);
     line("spectrace", r.threads, r.spectraceN, r.bytesPerTriangle, 1.0);
+    line("spectrace_interleaved", 1, r.interleaved1, r.bytesPerTriangle, r.embree ? r.interleavedRatio1() : 1.0);
+    line("spectrace_interleaved", r.threads, r.interleavedN, r.bytesPerTriangle, r.embree ? r.interleavedRatioN() : 1.0);
     if (!r.embree) continue;
     line("embree", 1, r.embree1, r.embreeBytesPerTriangle, r.ratio1());
     line("embree", r.threads, r.embreeN, r.embreeBytesPerTriangle, r.ratioN());
@@ -213,6 +215,11 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
     const double m = double(r.rays) * 1e-6;
     md << fmt::format("| spectrace | 1 | {:.3f} | {:.1f} | |\n", m / r.spectrace1, r.bytesPerTriangle);
     md << fmt::format("| spectrace | {} | {:.3f} | {:.1f} | |\n", r.threads, m / r.spectraceN, r.bytesPerTriangle);
+    const auto interleavedRatio = [&](double ratio) { return r.embree ? fmt::format("{:.3f}", ratio) : std::string(); };
+    md << fmt::format("| spectrace, {} walks in turn | 1 | {:.3f} | {:.1f} | {} |\n", kCeilingWalksInFlight,
+                      m / r.interleaved1, r.bytesPerTriangle, interleavedRatio(r.interleavedRatio1()));
+    md << fmt::format("| spectrace, {} walks in turn | {} | {:.3f} | {:.1f} | {} |\n", kCeilingWalksInFlight, r.threads,
+                      m / r.interleavedN, r.bytesPerTriangle, interleavedRatio(r.interleavedRatioN()));
     if (r.embree) {
       md << fmt::format("| Embree | 1 | {:.3f} | {:.1f} | {:.3f} |\n", m / r.embree1, r.embreeBytesPerTriangle, r.ratio1());
       md << fmt::format("| Embree | {} | {:.3f} | {:.1f} | {:.3f} |\n", r.threads, m / r.embreeN, r.embreeBytesPerTriangle,
@@ -230,6 +237,10 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
         md << fmt::format("| {} | {:.3f} | {:.3f} | {:.3f} |\n", s.triangles, double(s.rays) * 1e-6 / s.spectrace1,
                           double(s.rays) * 1e-6 / s.embree1, s.ratio1());
     }
+    md << fmt::format("\nWalks in turn: each thread steps {} walks one node or leaf at a time, as the CPU reference's "
+                      "threads step their beams' walks on a tree larger than the L2 cache; {} rays hit differently from "
+                      "one walk at a time.\n",
+                      kCeilingWalksInFlight, r.interleavedDifferences);
     md << "\n[bench/ray_ceiling.csv](bench/ray_ceiling.csv).\n\n";
   }
 }

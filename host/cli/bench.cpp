@@ -267,6 +267,13 @@ RayCeilingRow runRayCeilingSection(const BenchCommand& command, uint64_t triangl
   fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}\n", "spectrace", r.triangles, 1, m / r.spectrace1, r.bytesPerTriangle);
   fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}\n", "spectrace", r.triangles, r.threads, m / r.spectraceN,
              r.bytesPerTriangle);
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}{}\n", "spectrace", r.triangles, 1, m / r.interleaved1,
+             r.bytesPerTriangle, r.embree ? fmt::format(" {:>16.3f}", r.interleavedRatio1()) : "");
+  fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}{}\n", "spectrace", r.triangles, r.threads, m / r.interleavedN,
+             r.bytesPerTriangle, r.embree ? fmt::format(" {:>16.3f}", r.interleavedRatioN()) : "");
+  fmt::print("(the last two: {} walks in turn on each thread, as the CPU reference walks a tree larger than its L2 "
+             "cache; {} rays hit differently from one walk at a time)\n",
+             kCeilingWalksInFlight, r.interleavedDifferences);
   if (!r.embree) {
     fmt::print("Embree: unavailable (built without it: install libembree-dev, configure with -DSPECTRACE_EMBREE=ON)\n");
     return r;

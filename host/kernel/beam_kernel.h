@@ -178,6 +178,103 @@ class BeamKernel {
 #define SPECTRACE_CPU_WALK_STEP  // wide_walk.h
 #include "trace.h"
 #include "profile.h"  // the bench's cost profile
+
+  // The CPU's walk (shaders/objects.h: intersectObjects hands it here) as a
+  // state and a step, so that a thread can advance several beams' walks in
+  // turn (host/backend/walk_interleaver.h): a walk waits on memory at nearly
+  // every step, and the others' steps run while its lines arrive. Each step
+  // is the shader's loop body with host/kernel/wide_walk.h's vector forms of
+  // the node and leaf tests, so the walk visits the same children in the
+  // same order and keeps the same hit, however its steps are interleaved.
+  struct WalkState {
+    WalkRay ray;
+    vec3 origin;
+    vec3 direction;
+    ObjectHit hit;
+    bool found;
+    bool anyHit;
+    uint depth;
+    uint child;
+    uint count;
+    uint stackEntry[kBvhStackSize];  // child << kBvhCountBits | count
+    float stackEnter[kBvhStackSize];
+  };
+
+  void startWalk(WalkState& walk, vec3 origin, vec3 direction, float tMax, bool anyHit) {
+    walk.ray = walkRayOf(origin, inverseDirection(direction));
+    walk.origin = origin;
+    walk.direction = direction;
+    walk.hit.t = tMax;
+    walk.hit.primitive = 0u;
+    walk.found = false;
+    walk.anyHit = anyHit;
+    walk.depth = 0u;
+    walk.child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
+    walk.count = constants.bvhRootLeaf;
+  }
+
+  // One node or leaf of the walk; false when the walk is over.
+  bool stepWalk(WalkState& walk) {
+    return walkStep(walk.ray, walk.origin, walk.direction, walk.anyHit, walk.hit, walk.found, walk.depth, walk.child,
+                    walk.count, walk.stackEntry, walk.stackEnter);
+  }
+  // The step on the walk's parts, so that a walk run here keeps them in
+  // local variables (in registers; a WalkState's live in memory).
+  bool walkStep(const WalkRay& ray, vec3 origin, vec3 direction, bool anyHit, ObjectHit& hit, bool& found,
+                uint& depth, uint& child, uint& count, uint* stackEntry, float* stackEnter) {
+    if (count > 0u) {
+      // Four triangles on the lanes of a register; the scalar loop for a
+      // leaf with other primitives.
+      if (!nearestTriangleInLeaf(origin, direction, primitives.data() + child, child, count,
+                                 [&](float t, uint primitive) { keepNearerHit(t, primitive, hit, found); }))
+        for (uint i = 0u; i < count; ++i)
+          keepNearerHit(intersectPrimitive(origin, direction, readPrimitive(child + i)), child + i, hit, found);
+      if (found && anyHit) return false;
+    } else if (nearestChildMet(ray, bvhNodes[child], hit.t, stackEntry, stackEnter, depth, child, count,
+                               [this](uint c, uint n) { prefetchBvhChild(c, n); })) {
+      // The nearest child met, which the shader pushes and pops at once.
+      return true;
+    }
+    // The nearest entry that the closest hit so far leaves in reach.
+    const float reach = hit.t * 1.0000004f;
+    bool next = false;
+    while (depth > 0u && !next) {
+      depth -= 1u;
+      next = stackEnter[depth] <= reach;
+    }
+    if (!next) return false;
+    child = stackEntry[depth] >> kBvhCountBits;
+    count = stackEntry[depth] & ((1u << kBvhCountBits) - 1u);
+    return true;
+  }
+
+  // Where a thread interleaves walks, it sets these: a walk is started in
+  // `handedWalk` and `awaitWalk(awaitContext)` returns once the thread has
+  // stepped it to its end. Otherwise the walk runs here, step after step.
+  WalkState* handedWalk = nullptr;
+  void (*awaitWalk)(void*) = nullptr;
+  void* awaitContext = nullptr;
+
+  bool cpuIntersectObjects(vec3 origin, vec3 direction, float tMax, bool anyHit, ObjectHit& hit) {
+    if (handedWalk != nullptr) {
+      startWalk(*handedWalk, origin, direction, tMax, anyHit);
+      awaitWalk(awaitContext);
+      hit = handedWalk->hit;
+      return handedWalk->found;
+    }
+    const WalkRay ray = walkRayOf(origin, inverseDirection(direction));
+    hit.t = tMax;
+    hit.primitive = 0u;
+    bool found = false;
+    uint depth = 0u;
+    uint child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
+    uint count = constants.bvhRootLeaf;
+    uint stackEntry[kBvhStackSize];
+    float stackEnter[kBvhStackSize];
+    while (walkStep(ray, origin, direction, anyHit, hit, found, depth, child, count, stackEntry, stackEnter)) {
+    }
+    return found;
+  }
 };
 
 static_assert(KernelIncluder<BeamKernel>);
