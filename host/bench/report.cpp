@@ -238,7 +238,7 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
                           double(s.rays) * 1e-6 / s.embree1, s.ratio1());
     }
     md << fmt::format("\nWalks in turn: each thread steps {} walks one node or leaf at a time, as the CPU reference's "
-                      "threads step their beams' walks on a tree larger than the L2 cache; {} rays hit differently from "
+                      "threads step their beams' walks on a tree larger than the last-level cache; {} rays hit differently from "
                       "one walk at a time.\n",
                       kCeilingWalksInFlight, r.interleavedDifferences);
     md << "\n[bench/ray_ceiling.csv](bench/ray_ceiling.csv).\n\n";

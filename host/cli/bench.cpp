@@ -271,7 +271,7 @@ RayCeilingRow runRayCeilingSection(const BenchCommand& command, uint64_t triangl
              r.bytesPerTriangle, r.embree ? fmt::format(" {:>16.3f}", r.interleavedRatio1()) : "");
   fmt::print("{:<10} {:>10} {:>8} {:>14.3f} {:>14.1f}{}\n", "spectrace", r.triangles, r.threads, m / r.interleavedN,
              r.bytesPerTriangle, r.embree ? fmt::format(" {:>16.3f}", r.interleavedRatioN()) : "");
-  fmt::print("(the last two: {} walks in turn on each thread, as the CPU reference walks a tree larger than its L2 "
+  fmt::print("(the last two: {} walks in turn on each thread, as the CPU reference walks a tree larger than the last-level "
              "cache; {} rays hit differently from one walk at a time)\n",
              kCeilingWalksInFlight, r.interleavedDifferences);
   if (!r.embree) {
