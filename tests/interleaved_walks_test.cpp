@@ -14,10 +14,13 @@
 #include "bench/optics_bench.h"
 #include "compile/compile_scene.h"
 #include "scene/scene.h"
+#include "support/same_film.h"
 #include "support/test_scale.h"
 
 namespace spectrace {
 namespace {
+
+using testing::expectSameFilm;
 
 // A tessellated sphere (diffuse) behind a glass ball, a mirror and a disk,
 // through a pinhole, lit by a spot and a lamp: every primitive type, with
@@ -46,13 +49,6 @@ SpectralHistogram render(const CompiledScene& plan, WalkInterleaving interleavin
   EXPECT_EQ(tracer.interleavesWalks(), interleaving == WalkInterleaving::Always);
   EXPECT_EQ(tracer.trace(0, beams), beams);
   return tracer.download();
-}
-
-void expectSameFilm(const SpectralHistogram& a, const SpectralHistogram& b, const std::string& what) {
-  EXPECT_EQ(a.countedBeams, b.countedBeams) << what;
-  EXPECT_TRUE(a.counts() == b.counts()) << what << ": bin counts differ";
-  EXPECT_TRUE(a.colourSums() == b.colourSums()) << what << ": colour sums differ";
-  EXPECT_TRUE(a.squaredWeightSums() == b.squaredWeightSums()) << what << ": squared weights differ";
 }
 
 void expectInterleavingChangesNothing(const Scene& scene, const CompileOptions& options, const std::string& what) {

@@ -7,11 +7,14 @@
 
 #include "backend/cpu_tracer.h"
 #include "compile/compile_scene.h"
+#include "support/same_film.h"
 #include "support/test_scale.h"
 #include "support/test_scenes.h"
 
 namespace spectrace {
 namespace {
+
+using testing::expectSameFilm;
 
 struct Variant {
   const char* name;
@@ -38,13 +41,6 @@ SpectralHistogram render(const CompiledScene& plan, CpuCode code, uint32_t stage
   CpuTracer tracer(plan, 2, stage, code);
   EXPECT_EQ(tracer.trace(first, beams), beams);
   return tracer.download();
-}
-
-void expectSameFilm(const SpectralHistogram& a, const SpectralHistogram& b, const std::string& what) {
-  EXPECT_EQ(a.countedBeams, b.countedBeams) << what;
-  EXPECT_TRUE(a.counts() == b.counts()) << what << ": bin counts differ";
-  EXPECT_TRUE(a.colourSums() == b.colourSums()) << what << ": colour sums differ";
-  EXPECT_TRUE(a.squaredWeightSums() == b.squaredWeightSums()) << what << ": squared weights differ";
 }
 
 class CpuCodes : public ::testing::Test {
