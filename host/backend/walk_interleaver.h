@@ -24,9 +24,10 @@
 
 namespace spectrace {
 
+class WalkInterleaver;
+
 // One beam in flight: its kernel (the walk hook points at `walk`), its
 // fiber, and whether it waits for its walk or has run out of beams.
-class WalkInterleaver;
 struct BeamFiber {
   BeamFiber(const device::BeamKernel& k, WalkInterleaver& interleaver) : kernel(k), owner(&interleaver) {}
   device::BeamKernel kernel;
