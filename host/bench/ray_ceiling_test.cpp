@@ -1,4 +1,4 @@
-// The ray ceiling's two tracers against each other and against a closed
+// The ray ceiling's tracers against each other and against a closed
 // answer: on a convex closed mesh, a ray from outside a triangle's plane
 // aimed at its centroid (far from any edge) enters through that triangle,
 // and a ray leaving a face along its outward normal meets nothing.
@@ -56,6 +56,29 @@ TEST(BvhAgainstEmbree, SpectraceMeetsEachCentroidsTriangle) {
   traceSpectrace(geometry, rays.in, in, 2);
   traceSpectrace(geometry, rays.out, out, 2);
   expectCentroidHits(geometry, rays, in, out, "spectrace");
+}
+
+// Walks stepped in turn (as the CPU reference's threads step their beams'
+// walks) take the same steps as one at a time: the same hits, bit for bit,
+// and the closed answer on the centroid rays.
+TEST(BvhAgainstEmbree, WalksInTurnFindTheSameHitsAsOneAtATime) {
+  const RayCeilingGeometry geometry = meshCeilingGeometry(20'000);
+  const std::vector<CeilingRay> rays = incoherentRays(geometry, 1u << 15, 3);
+  std::vector<CeilingHit> alone(rays.size()), inTurn(rays.size());
+  traceSpectrace(geometry, rays, alone, 1);
+  traceSpectraceInterleaved(geometry, rays, inTurn, 2);
+  size_t hits = 0, differ = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    hits += alone[i].hit ? 1 : 0;
+    differ += alone[i].hit != inTurn[i].hit || alone[i].primitive != inTurn[i].primitive || alone[i].t != inTurn[i].t;
+  }
+  EXPECT_GT(hits, rays.size() / 2);
+  EXPECT_EQ(differ, 0u);
+  const CentroidRays centroid = centroidRays(geometry);
+  std::vector<CeilingHit> in(centroid.in.size()), out(centroid.out.size());
+  traceSpectraceInterleaved(geometry, centroid.in, in, 2);
+  traceSpectraceInterleaved(geometry, centroid.out, out, 2);
+  expectCentroidHits(geometry, centroid, in, out, "spectrace, walks in turn");
 }
 
 TEST(BvhAgainstEmbree, EmbreeAgreesOnCentroidAndIncoherentRays) {
