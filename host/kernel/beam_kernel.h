@@ -140,6 +140,13 @@ class BeamKernel {
     const size_t bytes = count == 0 ? sizeof(BvhNode) : size_t(count) * sizeof(Primitive);
     for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(first + offset);
   }
+  void prefetchEntry(WalkEntry e) const {
+    const uint child = entryChild(e);
+    const char* first = entryCount(e) == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
+                                           : reinterpret_cast<const char*>(primitives.data() + child);
+    __builtin_prefetch(first);
+    __builtin_prefetch(first + 64);
+  }
   Material readMaterial(uint i) const { return materials[i]; }
   uint32_t readSceneWord(uint i) const { return sceneData[i]; }
   // One chunk on the CPU: `chunk` is always 0. Queued when the caller gave
@@ -196,8 +203,7 @@ class BeamKernel {
     uint depth;
     uint child;
     uint count;
-    uint stackEntry[kBvhStackSize];  // child << kBvhCountBits | count
-    float stackEnter[kBvhStackSize];
+    WalkEntry stack[kWalkStackSize];
   };
 
   void startWalk(WalkState& walk, vec3 origin, vec3 direction, float tMax, bool anyHit) {
@@ -216,12 +222,12 @@ class BeamKernel {
   // One node or leaf of the walk; false when the walk is over.
   bool stepWalk(WalkState& walk) {
     return walkStep(walk.ray, walk.origin, walk.direction, walk.anyHit, walk.hit, walk.found, walk.depth, walk.child,
-                    walk.count, walk.stackEntry, walk.stackEnter);
+                    walk.count, walk.stack);
   }
   // The step on the walk's parts, so that a walk run here keeps them in
   // local variables (in registers; a WalkState's live in memory).
   bool walkStep(const WalkRay& ray, vec3 origin, vec3 direction, bool anyHit, ObjectHit& hit, bool& found,
-                uint& depth, uint& child, uint& count, uint* stackEntry, float* stackEnter) {
+                uint& depth, uint& child, uint& count, WalkEntry* stack) {
     if (count > 0u) {
       // Four triangles on the lanes of a register; the scalar loop for a
       // leaf with other primitives.
@@ -230,22 +236,24 @@ class BeamKernel {
         for (uint i = 0u; i < count; ++i)
           keepNearerHit(intersectPrimitive(origin, direction, readPrimitive(child + i)), child + i, hit, found);
       if (found && anyHit) return false;
-    } else if (nearestChildMet(ray, bvhNodes[child], hit.t, stackEntry, stackEnter, depth, child, count,
-                               [this](uint c, uint n) { prefetchBvhChild(c, n); })) {
+    } else if (nearestChildMet(ray, bvhNodes[child], hit.t, stack, depth, child, count,
+                               [this](WalkEntry e) { prefetchEntry(e); })) {
       // The nearest child met, which the shader pushes and pops at once.
+      if (count > 2u) prefetchBvhChild(child, count);
       return true;
     }
     // The nearest entry that the closest hit so far leaves in reach.
     const float reach = hit.t * 1.0000004f;
-    bool next = false;
-    while (depth > 0u && !next) {
-      depth -= 1u;
-      next = stackEnter[depth] <= reach;
+    while (depth > 0u) {
+      const WalkEntry entry = stack[--depth];
+      if (entryWithin(entry, reach)) {
+        child = entryChild(entry);
+        count = entryCount(entry);
+        if (count > 2u) prefetchBvhChild(child, count);
+        return true;
+      }
     }
-    if (!next) return false;
-    child = stackEntry[depth] >> kBvhCountBits;
-    count = stackEntry[depth] & ((1u << kBvhCountBits) - 1u);
-    return true;
+    return false;
   }
 
   // Where a thread interleaves walks, it sets these: a walk is started in
@@ -269,9 +277,8 @@ class BeamKernel {
     uint depth = 0u;
     uint child = 0u;  // the root, or with bvhRootLeaf the root's only leaf
     uint count = constants.bvhRootLeaf;
-    uint stackEntry[kBvhStackSize];
-    float stackEnter[kBvhStackSize];
-    while (walkStep(ray, origin, direction, anyHit, hit, found, depth, child, count, stackEntry, stackEnter)) {
+    WalkEntry stack[kWalkStackSize];
+    while (walkStep(ray, origin, direction, anyHit, hit, found, depth, child, count, stack)) {
     }
     return found;
   }

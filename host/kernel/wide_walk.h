@@ -3,12 +3,12 @@
 // (shaders/objects.h: intersectObjects): at a leaf of triangles, four of
 // them tested on the lanes of one register (nearestTriangleInLeaf, below);
 // at a node, the ray against the node's four child boxes on one vector
-// register, the nearest child met taken next and the others pushed far to
-// near by a short insertion. The shader's step, compiled as C++, is scalar
-// (GCC does not vectorise its vec4 lanes) and runs the fixed sorting
-// network that keeps a GPU's lanes together, so a CPU thread paid for
-// both; this step traces the ray ceiling's incoherent rays about twice as
-// fast (docs/benchmarks.md).
+// register, the children sorted as 64-bit keys (entry distance, then
+// child) by the shader's network of compare-exchanges in conditional
+// moves, the nearest met taken next and the others pushed far to near.
+// The shader's step, compiled as C++, is scalar (GCC does not vectorise
+// its vec4 lanes); this step traces the ray ceiling's incoherent rays
+// about twice as fast (docs/benchmarks.md).
 //
 // Exact, not an approximation: the box test does the shader's float
 // operations in the shader's order on the planes the shader's min and max
@@ -24,6 +24,9 @@
 #include <glm/vec4.hpp>
 #ifdef __SSE__
 #include <xmmintrin.h>
+#endif
+#ifdef __SSE2__
+#include <emmintrin.h>
 #endif
 
 #include "device_shared.h"
@@ -124,65 +127,96 @@ inline void rayMeetsChildrenLanes(const WalkRay& ray, const BvhNode& node, float
   leave = lanesMin(lanesMin(xFar, yFar), lanesMin(zFar, broadcast(tMax))) * 1.0000004f;
 }
 
+// An entry of the CPU walk's stack: a child's entry distance and its word
+// (objects.h's child << kBvhCountBits | count) in one 64-bit key,
+// (bits of the distance + 1) << 32 | word. A distance is never negative,
+// and a non-negative float orders as its bits, so keys order as their
+// distances (ties by word); 0 is no child. One key sorts and moves as one
+// integer, where a distance and a word would move as two.
+using WalkEntry = uint64_t;
+// A step writes four entries above the stack's top and keeps the ones it
+// pushes, so the stack has room for three past the deepest walk's.
+constexpr uint32_t kWalkStackSize = kBvhStackSize + 3u;
+
+inline uint32_t entryChild(WalkEntry e) { return uint32_t(e) >> kBvhCountBits; }
+inline uint32_t entryCount(WalkEntry e) { return uint32_t(e) & ((1u << kBvhCountBits) - 1u); }
+// Whether the entry's box begins within `reach` (objects.h's enter <=
+// reach, for a reach that is not negative).
+inline bool entryWithin(WalkEntry e, float reach) {
+  uint32_t reachBits;
+  __builtin_memcpy(&reachBits, &reach, sizeof reachBits);
+  return uint32_t(e >> 32) <= reachBits + 1u;
+}
+
+// The larger key to `a`, the smaller to `b` (conditional moves, no branch).
+inline void orderPair(WalkEntry& a, WalkEntry& b) {
+  const WalkEntry larger = a < b ? b : a, smaller = a < b ? a : b;
+  a = larger;
+  b = smaller;
+}
+
 // The walk's step at `node`, for its children that the ray meets before
 // tMax (empty slots never): the nearest goes to `child` and `count`, to be
-// visited next, and the others onto the stack (objects.h's entries: child
-// << kBvhCountBits | count, and the entry distance), far to near, so the
-// next nearest is on top; `prefetch(child, count)` for each, as it is
-// known. Returns false, pushing nothing, when no child is met.
+// visited next, and the others onto the stack, far to near, so that the
+// next nearest is on top. `prefetch(entry)` is called for the four keys
+// sorted, met or not (a key of 0 names the root, whose lines are read
+// anyway). Returns false, pushing nothing, when no child is met.
 //
 // The shader pushes the nearest too and pops it at once: its entry
 // distance is never beyond the walk's reach (enter <= leave, and leave is
 // at most tMax times the same widening as the reach), so visiting it
-// directly is the same walk. Most steps meet one child, which needs no
-// sorting and no stack.
+// directly is the same walk.
+//
+// No branch on the ray's data but "was anything met": how many children a
+// ray meets, and in which order, is a coin toss at every node, and a CPU
+// guessing it wrong lost more than the sort below costs. So the four keys
+// (0 for a child not met) go through the shader's network of five
+// compare-exchanges as integers, all four are written above the stack's
+// top, and the top moves up by the number met less one.
 template <typename Prefetch>
-inline bool nearestChildMet(const WalkRay& ray, const BvhNode& node, float tMax, uint32_t* stackEntry,
-                            float* stackEnter, uint32_t& depth, uint32_t& child, uint32_t& count,
-                            Prefetch prefetch) {
+inline bool nearestChildMet(const WalkRay& ray, const BvhNode& node, float tMax, WalkEntry* stack, uint32_t& depth,
+                            uint32_t& child, uint32_t& count, Prefetch prefetch) {
   FloatLanes enter, leave;
   rayMeetsChildrenLanes(ray, node, tMax, enter, leave);
-  // The node's words as plain arrays: glm's uvec4 reads a lane by a
-  // switch, a branch for each read with a variable index.
-  uint32_t childWords[4], countWords[4];
-  __builtin_memcpy(childWords, &node.child, sizeof childWords);
-  __builtin_memcpy(countWords, &node.count, sizeof countWords);
   MaskLanes childLanes, countLanes;
-  __builtin_memcpy(&childLanes, childWords, sizeof childLanes);
-  __builtin_memcpy(&countLanes, countWords, sizeof countLanes);
+  __builtin_memcpy(&childLanes, &node.child, sizeof childLanes);
+  __builtin_memcpy(&countLanes, &node.count, sizeof countLanes);
   const MaskLanes met = (enter <= leave) & ((childLanes | countLanes) != 0);
-  unsigned bits = laneBits(met);
+  const unsigned bits = laneBits(met);
   if (bits == 0) return false;
-  if ((bits & (bits - 1)) == 0) {
-    const int k = __builtin_ctz(bits);
-    prefetch(childWords[k], countWords[k]);
-    child = childWords[k];
-    count = countWords[k];
-    return true;
-  }
-  float key[4];
-  uint32_t entry[4];
-  int n = 0;
-  for (; bits != 0; bits &= bits - 1) {
-    const int k = __builtin_ctz(bits);
-    prefetch(childWords[k], countWords[k]);
-    // Insertion: farthest first.
-    const float keyK = enter[k];
-    int j = n++;
-    for (; j > 0 && key[j - 1] < keyK; --j) {
-      key[j] = key[j - 1];
-      entry[j] = entry[j - 1];
-    }
-    key[j] = keyK;
-    entry[j] = (childWords[k] << kBvhCountBits) | countWords[k];
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    stackEntry[depth] = entry[j];
-    stackEnter[depth] = key[j];
-    ++depth;
-  }
-  child = entry[n - 1] >> kBvhCountBits;
-  count = entry[n - 1] & ((1u << kBvhCountBits) - 1u);
+  // + 0.0f turns an entry distance of -0 into +0, whose bits are 0.
+  const FloatLanes distance = enter + 0.0f;
+  MaskLanes high;
+  __builtin_memcpy(&high, &distance, sizeof high);
+  high = (high + 1) & met;
+  const MaskLanes word = ((childLanes << int(kBvhCountBits)) | countLanes) & met;
+  WalkEntry key[4];
+#ifdef __SSE2__
+  // Lane k's word and high half side by side: key k, little-endian.
+  const __m128i low = _mm_unpacklo_epi32(__m128i(word), __m128i(high));
+  const __m128i upper = _mm_unpackhi_epi32(__m128i(word), __m128i(high));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(key), low);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(key + 2), upper);
+#else
+  for (int k = 0; k < 4; ++k) key[k] = (WalkEntry(uint32_t(high[k])) << 32) | uint32_t(word[k]);
+#endif
+  orderPair(key[0], key[1]);
+  orderPair(key[2], key[3]);
+  orderPair(key[0], key[2]);
+  orderPair(key[1], key[3]);
+  orderPair(key[1], key[2]);
+  // Each key stored on its own, and the nearest (the last not 0) picked
+  // by conditional moves: a wider load or an indexed one of keys just
+  // stored would wait for the stores to retire.
+  for (int k = 0; k < 4; ++k) stack[depth + uint32_t(k)] = key[k];
+  depth += uint32_t(__builtin_popcount(bits)) - 1u;
+  WalkEntry nearest = key[0];
+  nearest = key[1] != 0 ? key[1] : nearest;
+  nearest = key[2] != 0 ? key[2] : nearest;
+  nearest = key[3] != 0 ? key[3] : nearest;
+  child = entryChild(nearest);
+  count = entryCount(nearest);
+  for (int k = 0; k < 4; ++k) prefetch(key[k]);
   return true;
 }
 

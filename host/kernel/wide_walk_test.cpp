@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -79,19 +81,27 @@ class WalkSteps : public ::testing::Test {
     return step;
   }
   Step vectorStep(const vec3& origin, const vec3& direction, const BvhNode& node, float tMax,
-                         int* prefetched = nullptr) {
-    uint32_t entries[4];
-    float keys[4];
-    uint32_t depth = 0;
+                  std::vector<WalkEntry>* prefetched = nullptr) {
+    // Entries below the step's own, which it must leave alone.
+    constexpr WalkEntry kBelow = 0x5a5a5a5a5a5a5a5aull;
+    WalkEntry stack[2 + kWalkStackSize];
+    std::fill(std::begin(stack), std::end(stack), kBelow);
+    uint32_t depth = 2;
     const vec3 inverse = kernel_.inverseDirection(direction);
     uint32_t child = 0, count = 0;
-    const bool met = nearestChildMet(walkRayOf(origin, inverse), node, tMax, entries, keys, depth, child, count,
-                                     [&](uint32_t, uint32_t) {
-                                       if (prefetched) ++*prefetched;
+    const bool met = nearestChildMet(walkRayOf(origin, inverse), node, tMax, stack, depth, child, count,
+                                     [&](WalkEntry e) {
+                                       if (prefetched) prefetched->push_back(e);
                                      });
-    Step step{std::vector<uint32_t>(entries, entries + depth), std::vector<float>(keys, keys + depth)};
+    EXPECT_EQ(stack[0], kBelow);
+    EXPECT_EQ(stack[1], kBelow);
+    Step step;
+    for (uint32_t i = 2; i < depth; ++i) {
+      step.entries.push_back(entryChild(stack[i]) << kBvhCountBits | entryCount(stack[i]));
+      step.keys.push_back(keyDistance(stack[i]));
+    }
     if (!met) {
-      EXPECT_EQ(depth, 0u) << "nothing pushed when nothing is met";
+      EXPECT_EQ(depth, 2u) << "nothing pushed when nothing is met";
       return step;
     }
     // The nearest, visited next, is where the shader's step leaves it: on
@@ -105,6 +115,13 @@ class WalkSteps : public ::testing::Test {
         break;
       }
     return step;
+  }
+  // The entry distance a stack key holds.
+  static float keyDistance(WalkEntry e) {
+    const uint32_t bits = uint32_t(e >> 32) - 1u;
+    float distance;
+    std::memcpy(&distance, &bits, sizeof distance);
+    return distance;
   }
 
   BeamKernel kernel_;
@@ -181,7 +198,7 @@ TEST_F(WalkSteps, VectorStepPushesTheShadersChildrenNearestOnTop) {
     const vec3 direction = r % 4 == 0 ? randomDirection(rng) : glm::normalize(0.5f * aim - origin);
     const float tMax = r % 5 == 0 ? 0.5f : 3.0e38f;
     const Step expected = shaderStep(origin, direction, node, tMax);
-    int prefetched = 0;
+    std::vector<WalkEntry> prefetched;
     const Step got = vectorStep(origin, direction, node, tMax, &prefetched);
     ASSERT_EQ(got.keys, expected.keys) << "case " << r;
     // Equal keys may come in either order (the walk's hit does not depend
@@ -197,12 +214,53 @@ TEST_F(WalkSteps, VectorStepPushesTheShadersChildrenNearestOnTop) {
     std::sort(gotEntries.begin(), gotEntries.end());
     std::sort(expectedEntries.begin(), expectedEntries.end());
     ASSERT_EQ(gotEntries, expectedEntries) << "case " << r;
-    ASSERT_EQ(prefetched, int(got.entries.size())) << "each child pushed is prefetched once";
+    // Every child met is prefetched, the nearest included; the other keys
+    // prefetched are 0, no child (the root).
+    std::vector<uint32_t> prefetchedChildren;
+    for (WalkEntry e : prefetched)
+      if (e != 0) prefetchedChildren.push_back(entryChild(e) << kBvhCountBits | entryCount(e));
+    std::sort(prefetchedChildren.begin(), prefetchedChildren.end());
+    ASSERT_EQ(prefetchedChildren, gotEntries) << "case " << r;
+    ASSERT_EQ(prefetched.size(), got.entries.empty() ? 0u : 4u) << "case " << r;
     pushedSomething += got.entries.empty() ? 0 : 1;
     pushedSeveral += got.entries.size() > 1 ? 1 : 0;
   }
   EXPECT_GT(pushedSomething, 10000) << "the test must meet boxes";
   EXPECT_GT(pushedSeveral, 2000) << "the test must order several children";
+}
+
+// The pop's test on a key, against the shader's enter <= reach on the
+// distance: at the distance, one float either side, 0 and the largest.
+TEST_F(WalkSteps, KeysAreWithinReachAsTheirDistancesAre) {
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  std::uniform_int_distribution<int> pick(0, 3);
+  int keys = 0, zeros = 0;
+  for (int r = 0; r < 10000; ++r) {
+    const BvhNode node = randomNode(rng);
+    vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng));
+    const int k = pick(rng);
+    // Some origins on a child's face (an entry distance of +0 or -0), the
+    // rest aimed at a child's box.
+    if (r % 3 == 0) origin.x = node.minX[k];
+    const vec3 aim(node.minX[k] + node.maxX[k], node.minY[k] + node.maxY[k], node.minZ[k] + node.maxZ[k]);
+    const vec3 direction = r % 3 == 0 ? randomDirection(rng) : glm::normalize(0.5f * aim - origin);
+    std::vector<WalkEntry> prefetched;
+    vectorStep(origin, direction, node, 3.0e38f, &prefetched);
+    for (WalkEntry e : prefetched) {
+      if (e == 0) continue;
+      ++keys;
+      const float d = keyDistance(e);
+      zeros += d == 0.0f ? 1 : 0;
+      ASSERT_GE(d, 0.0f);
+      ASSERT_FALSE(std::signbit(d)) << "an entry distance of -0 is keyed as +0";
+      for (float reach : {d, std::nextafter(d, 0.0f), std::nextafter(d, INFINITY), 0.0f, 1.0f, 3.0e38f,
+                          3.0e38f * 1.0000004f, INFINITY})
+        ASSERT_EQ(entryWithin(e, reach), d <= reach) << "distance " << d << ", reach " << reach;
+    }
+  }
+  EXPECT_GT(keys, 5000);
+  EXPECT_GT(zeros, 100) << "the test must meet entry distances of zero";
 }
 
 // A node whose four boxes are the same: four equal keys, all pushed.
