@@ -4,6 +4,7 @@
 #include <charconv>
 #include <limits>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -165,10 +166,14 @@ constexpr const char* kElementNoun[3] = {"face", "polyline (l)", "point set (p)"
 // positive vertex index and where it was.
 class Reader {
  public:
+  // `verticesBefore`: vertices defined before the text this reader is
+  // given (the second part of a file read in two; otherwise 0).
+  explicit Reader(uint64_t verticesBefore = 0) : verticesBefore_(verticesBefore) {}
+
   void vertexLine(std::string_view line, std::string_view rest) {
     splitTokens(rest, tokens_);
     const auto& numbers = tokens_;
-    const uint64_t vertex = result_.vertices.size() + 1;
+    const uint64_t vertex = defined() + 1;
     if (numbers.size() != 3 && numbers.size() != 4 && numbers.size() != 6)
       return fail(line, fmt::format("vertex {} has {} numbers; a vertex is x y z, optionally followed by w or by r g b",
                                     vertex, numbers.size()));
@@ -222,6 +227,9 @@ class Reader {
   }
 
   bool failed() const { return result_.fault.has_value(); }
+  // What was read, without finish()'s check of the largest index.
+  ObjText& read() { return result_; }
+  const WholeNumber& largest() const { return largest_; }
   void atLine(uint64_t number) { line_ = number; }
 
  private:
@@ -251,7 +259,7 @@ class Reader {
       if (!n) return badCorner(corner);
       if (!checkIndex(corner, k, *n)) return false;
       if (k == 0)
-        vertex = uint32_t(n->negative ? result_.vertices.size() - n->magnitude
+        vertex = uint32_t(n->negative ? defined() - n->magnitude
                                       : std::min<uint64_t>(n->magnitude - 1, std::numeric_limits<uint32_t>::max()));
     }
     return true;
@@ -272,10 +280,9 @@ class Reader {
       return false;
     }
     if (k != 0) return true;
-    const uint64_t defined = result_.vertices.size();
-    if (n.negative && n.magnitude > defined) {
+    if (n.negative && n.magnitude > defined()) {
       fail(corner, fmt::format("{} refers to vertex before the first ({} back from the {} vertices defined so far)",
-                               elementName(), n.beyond ? "more than 2^64" : std::to_string(n.magnitude), defined));
+                               elementName(), n.beyond ? "more than 2^64" : std::to_string(n.magnitude), defined()));
       return false;
     }
     if (!n.negative && n.magnitude > largest_.magnitude) {
@@ -288,6 +295,9 @@ class Reader {
     return true;
   }
 
+  uint64_t defined() const { return verticesBefore_ + result_.vertices.size(); }
+
+  uint64_t verticesBefore_ = 0;
   ObjText result_;
   std::vector<std::string_view> tokens_;
   Element element_ = Element::Face;
@@ -322,11 +332,11 @@ bool isObjNumber(std::string_view s) {
   return i == s.size();
 }
 
-ObjText readObjText(std::string_view text) {
-  // A UTF-8 byte order mark, which some exporters write, would otherwise
-  // join the first line's keyword, and a first `v` line would go unread.
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-  Reader reader;
+namespace {
+
+// Hands each `v`, `f`, `l` and `p` line of `text` to `reader`, until it
+// fails.
+void readLines(std::string_view text, Reader& reader) {
   Lines lines(text);
   std::string_view line;
   while (!reader.failed() && lines.next(line)) {
@@ -346,7 +356,95 @@ ObjText readObjText(std::string_view text) {
     else
       reader.elementLine(kind == 'f' ? Element::Face : kind == 'l' ? Element::Polyline : Element::Points, whole, rest);
   }
+}
+
+// The lines whose keyword is `v`: the vertices a text defines, when it
+// has no fault.
+uint64_t vertexLines(std::string_view text) {
+  Lines lines(text);
+  std::string_view line;
+  uint64_t count = 0;
+  while (lines.next(line)) {
+    const size_t start = findNonBlank(line, 0);
+    count += start < line.size() && line[start] == 'v' && findBlank(line, start) == start + 1 ? 1 : 0;
+  }
+  return count;
+}
+
+ObjText readSerially(std::string_view text) {
+  Reader reader;
+  readLines(text, reader);
   return reader.finish();
+}
+
+}  // namespace
+
+ObjText readObjText(std::string_view text) {
+  // A UTF-8 byte order mark, which some exporters write, would otherwise
+  // join the first line's keyword, and a first `v` line would go unread.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  // Reading numbers is nearly all of a large mesh's load, so a large text
+  // is read in parts at once, split after lines' ends: two per core, since
+  // a file's vertex lines, which come first, take longer than its faces.
+  constexpr size_t kLeastPartBytes = size_t(2) << 20;
+  const size_t parts = std::min<size_t>(2 * std::max(1u, std::thread::hardware_concurrency()),
+                                        text.size() / kLeastPartBytes);
+  std::vector<size_t> splits;
+  for (size_t k = 1; k < parts; ++k) {
+    const size_t end = text.find('\n', std::max(text.size() * k / parts, splits.empty() ? 0 : splits.back()));
+    if (end == std::string_view::npos) break;
+    if (splits.empty() || end + 1 > splits.back()) splits.push_back(end + 1);
+  }
+  if (splits.empty()) return readSerially(text);
+  return readObjTextInParts(text, splits);
+}
+
+ObjText readObjTextInParts(std::string_view text, const std::vector<size_t>& splits) {
+  std::vector<std::string_view> parts;
+  size_t begin = 0;
+  for (size_t split : splits) {
+    parts.push_back(text.substr(begin, split - begin));
+    begin = split;
+  }
+  parts.push_back(text.substr(begin));
+  const size_t n = parts.size();
+  const auto eachPart = [n](const auto& work) {
+    std::vector<std::thread> threads;
+    for (size_t k = 1; k < n; ++k) threads.emplace_back(work, k);
+    work(0);
+    for (std::thread& t : threads) t.join();
+  };
+  // A part's negative indices count back from the vertices of every part
+  // before it, so each part's vertex lines are counted first.
+  std::vector<uint64_t> vertices(n);
+  eachPart([&](size_t k) { vertices[k] = vertexLines(parts[k]); });
+  std::vector<Reader> readers;
+  readers.reserve(n);
+  uint64_t before = 0;
+  for (size_t k = 0; k < n; ++k) {
+    readers.emplace_back(before);
+    before += vertices[k];
+  }
+  eachPart([&](size_t k) { readLines(parts[k], readers[k]); });
+  // A fault's message names its line, face and vertex numbers as the whole
+  // file counts them, and the fault reported is the first in the file: the
+  // text is read again in one part, which takes the time only for a file
+  // that is refused. So does a count of a part's vertices that disagrees
+  // with its reading, which a part without a fault cannot give.
+  uint64_t largest = 0;
+  for (size_t k = 0; k < n; ++k) {
+    if (readers[k].failed() || readers[k].read().vertices.size() != vertices[k]) return readSerially(text);
+    largest = std::max(largest, readers[k].largest().magnitude);
+  }
+  if (largest > before) return readSerially(text);
+  ObjText all = std::move(readers[0].read());
+  for (size_t k = 1; k < n; ++k) {
+    ObjText& part = readers[k].read();
+    all.vertices.insert(all.vertices.end(), part.vertices.begin(), part.vertices.end());
+    all.corners.insert(all.corners.end(), part.corners.begin(), part.corners.end());
+    all.cornerCounts.insert(all.cornerCounts.end(), part.cornerCounts.begin(), part.cornerCounts.end());
+  }
+  return all;
 }
 
 }  // namespace spectrace

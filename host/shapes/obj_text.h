@@ -63,5 +63,11 @@ struct ObjText {
 // vertices, which is known only at the end: then the largest such index is
 // named.
 ObjText readObjText(std::string_view text);
+// The same, the text read in parts at once: [0, splits[0]), [splits[0],
+// splits[1]), ... [splits.back(), end), each split just after a "\n" and in
+// increasing order, any byte order mark already removed; readObjText
+// splits a large text so. What it returns does not depend on the splits
+// (obj_text_test reads texts split at every line).
+ObjText readObjTextInParts(std::string_view text, const std::vector<size_t>& splits);
 
 }  // namespace spectrace

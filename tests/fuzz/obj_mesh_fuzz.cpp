@@ -3,7 +3,8 @@
 // SceneError (exit code 2); an accepted mesh must be what readObjText read
 // (its vertices, and each face's fan) and what the tracer relies on:
 // indices in range, finite vertices within the world bounds, no triangle of
-// zero area.
+// zero area. Read in two parts, split at a line's end, the text gives what
+// one reader finds (readObjTextInParts).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -37,11 +38,26 @@ void checkMesh(const Shape& shape, const ObjText& obj) {
   fuzz::require(!findDegenerateTriangle(shape.vertices, shape.triangles), "a zero-area triangle was accepted");
 }
 
+void checkSameReading(const ObjText& got, const ObjText& whole) {
+  fuzz::require(got.fault.has_value() == whole.fault.has_value(), "a split text is refused differently");
+  if (whole.fault) {
+    fuzz::require(got.fault->line == whole.fault->line && got.fault->token == whole.fault->token &&
+                      got.fault->what == whole.fault->what,
+                  "a split text's fault differs from the whole text's");
+    return;
+  }
+  fuzz::require(got.vertices == whole.vertices && got.corners == whole.corners &&
+                    got.cornerCounts == whole.cornerCounts,
+                "a split text reads differently from the whole text");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   const ObjText obj = readObjText(text);
+  if (const size_t end = text.find('\n', text.size() / 2); end != std::string::npos && end + 1 < text.size())
+    checkSameReading(readObjTextInParts(text, {end + 1}), readObjTextInParts(text, {}));
   json_fields::Source source;
   source.file = "fuzz.json";
   source.raise = [](const std::string& message) { throw SceneError(message); };
