@@ -132,8 +132,10 @@ class BeamKernel {
   BvhNode readBvhNode(uint i) const { return bvhNodes[i]; }
   // A CPU thread has only its own ray to trace, so it waits for each miss
   // of a tree too large for the caches: the children a ray meets are
-  // requested together, as soon as they are known, a leaf's primitives
-  // whole (on the ray ceiling, 1.1x the rays of its first four alone).
+  // requested together, as soon as they are known (prefetchEntry: a node's
+  // or a leaf's first two lines, with no branch on which), and the rest of
+  // a leaf's primitives when it is next (on the ray ceiling, whole leaves
+  // traced 1.1x the rays of their first four primitives alone).
   void prefetchBvhChild(uint child, uint count) const {
     const char* first = count == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
                                    : reinterpret_cast<const char*>(primitives.data() + child);
