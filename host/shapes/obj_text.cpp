@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <thread>
@@ -408,11 +409,24 @@ ObjText readObjTextInParts(std::string_view text, const std::vector<size_t>& spl
   }
   parts.push_back(text.substr(begin));
   const size_t n = parts.size();
+  // work(k) for every part, each on a thread; what a part throws (running
+  // out of memory) is thrown here, once all have ended.
   const auto eachPart = [n](const auto& work) {
-    std::vector<std::thread> threads;
-    for (size_t k = 1; k < n; ++k) threads.emplace_back(work, k);
-    work(0);
-    for (std::thread& t : threads) t.join();
+    std::vector<std::exception_ptr> thrown(n);
+    const auto guarded = [&](size_t k) {
+      try {
+        work(k);
+      } catch (...) {
+        thrown[k] = std::current_exception();
+      }
+    };
+    {
+      std::vector<std::jthread> threads;  // joined on every way out
+      for (size_t k = 1; k < n; ++k) threads.emplace_back(guarded, k);
+      guarded(0);
+    }
+    for (const std::exception_ptr& e : thrown)
+      if (e) std::rethrow_exception(e);
   };
   // A part's negative indices count back from the vertices of every part
   // before it, so each part's vertex lines are counted first.
