@@ -136,18 +136,23 @@ class BeamKernel {
   // or a leaf's first two lines, with no branch on which), and the rest of
   // a leaf's primitives when it is next (on the ray ceiling, whole leaves
   // traced 1.1x the rays of their first four primitives alone).
-  void prefetchBvhChild(uint child, uint count) const {
-    const char* first = count == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
-                                   : reinterpret_cast<const char*>(primitives.data() + child);
-    const size_t bytes = count == 0 ? sizeof(BvhNode) : size_t(count) * sizeof(Primitive);
-    for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(first + offset);
-  }
+  void prefetchBvhChild(uint child, uint count) const { prefetchChildLines(child, count, 0); }
   void prefetchEntry(WalkEntry e) const {
-    const uint child = entryChild(e);
-    const char* first = entryCount(e) == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
-                                           : reinterpret_cast<const char*>(primitives.data() + child);
+    const char* first = childBytes(entryChild(e), entryCount(e));
     __builtin_prefetch(first);
     __builtin_prefetch(first + 64);
+  }
+  // A child's bytes: a node (count 0) or a leaf's primitives.
+  const char* childBytes(uint child, uint count) const {
+    return count == 0 ? reinterpret_cast<const char*>(bvhNodes.data() + child)
+                      : reinterpret_cast<const char*>(primitives.data() + child);
+  }
+  // The child's lines from byte `from` on (128 where prefetchEntry has
+  // asked for the first two).
+  void prefetchChildLines(uint child, uint count, size_t from) const {
+    const char* first = childBytes(child, count);
+    const size_t bytes = count == 0 ? sizeof(BvhNode) : size_t(count) * sizeof(Primitive);
+    for (size_t offset = from; offset < bytes; offset += 64) __builtin_prefetch(first + offset);
   }
   Material readMaterial(uint i) const { return materials[i]; }
   uint32_t readSceneWord(uint i) const { return sceneData[i]; }
@@ -241,7 +246,7 @@ class BeamKernel {
     } else if (nearestChildMet(ray, bvhNodes[child], hit.t, stack, depth, child, count,
                                [this](WalkEntry e) { prefetchEntry(e); })) {
       // The nearest child met, which the shader pushes and pops at once.
-      if (count > 2u) prefetchBvhChild(child, count);
+      prefetchChildLines(child, count, 128);
       return true;
     }
     // The nearest entry that the closest hit so far leaves in reach.
@@ -251,7 +256,7 @@ class BeamKernel {
       if (entryWithin(entry, reach)) {
         child = entryChild(entry);
         count = entryCount(entry);
-        if (count > 2u) prefetchBvhChild(child, count);
+        prefetchChildLines(child, count, 128);
         return true;
       }
     }
