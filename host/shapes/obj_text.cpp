@@ -335,6 +335,14 @@ bool isObjNumber(std::string_view s) {
 
 namespace {
 
+// A line's keyword, its first word; `start` and `end` are where it begins
+// and ends in the line.
+std::string_view lineKeyword(std::string_view line, size_t& start, size_t& end) {
+  start = findNonBlank(line, 0);
+  end = findBlank(line, start);
+  return line.substr(start, end - start);
+}
+
 // Hands each `v`, `f`, `l` and `p` line of `text` to `reader`, until it
 // fails.
 void readLines(std::string_view text, Reader& reader) {
@@ -342,13 +350,12 @@ void readLines(std::string_view text, Reader& reader) {
   std::string_view line;
   while (!reader.failed() && lines.next(line)) {
     reader.atLine(lines.number());
-    // The keyword, the line's first word; the rest up to a comment.
-    const size_t start = findNonBlank(line, 0);
-    const size_t keywordEnd = findBlank(line, start);
-    const std::string_view keyword = line.substr(start, keywordEnd - start);
+    size_t start = 0, keywordEnd = 0;
+    const std::string_view keyword = lineKeyword(line, start, keywordEnd);
     if (keyword.size() != 1) continue;
     const char kind = keyword[0];
     if (kind != 'v' && kind != 'f' && kind != 'l' && kind != 'p') continue;
+    // The rest up to a comment.
     std::string_view rest = line.substr(keywordEnd);
     rest = rest.substr(0, rest.find('#'));
     const std::string_view whole = line.substr(start);
@@ -365,10 +372,8 @@ uint64_t vertexLines(std::string_view text) {
   Lines lines(text);
   std::string_view line;
   uint64_t count = 0;
-  while (lines.next(line)) {
-    const size_t start = findNonBlank(line, 0);
-    count += start < line.size() && line[start] == 'v' && findBlank(line, start) == start + 1 ? 1 : 0;
-  }
+  size_t start = 0, end = 0;
+  while (lines.next(line)) count += lineKeyword(line, start, end) == "v" ? 1 : 0;
   return count;
 }
 
