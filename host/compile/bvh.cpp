@@ -79,6 +79,50 @@ struct Item {
   glm::dvec3 centroid() const { return 0.5 * lo + 0.5 * hi; }  // lo + hi could overflow
 };
 
+// Two doubles in one register (GCC's and Clang's vector types; SSE2 on
+// x86-64). The builder's passes extend boxes by every item they read, and
+// glm's dvec3 does that one component at a time.
+typedef double Double2 __attribute__((vector_size(16)));
+// glm::min(acc, x) and glm::max(acc, x) on each lane, the same bits
+// (GCC makes these one minpd and one maxpd).
+inline Double2 lesser(Double2 acc, Double2 x) { return x < acc ? x : acc; }
+inline Double2 greater(Double2 acc, Double2 x) { return acc < x ? x : acc; }
+
+// A Box as x and y in a pair, z alone.
+struct PackedBox {
+  Double2 loXY{kInf, kInf}, hiXY{-kInf, -kInf};
+  double loZ = kInf, hiZ = -kInf;
+  void extend(Double2 lxy, double lz, Double2 hxy, double hz) {
+    loXY = lesser(loXY, lxy);
+    hiXY = greater(hiXY, hxy);
+    loZ = glm::min(loZ, lz);
+    hiZ = glm::max(hiZ, hz);
+  }
+  Box unpacked() const { return Box{{loXY[0], loXY[1], loZ}, {hiXY[0], hiXY[1], hiZ}}; }
+};
+
+// An item's bounds and centroid, packed.
+struct PackedItem {
+  Double2 loXY, hiXY, centroidXY;
+  double loZ, hiZ, centroidZ;
+  explicit PackedItem(const Item& it)
+      : loXY{it.lo.x, it.lo.y}, hiXY{it.hi.x, it.hi.y}, loZ(it.lo.z), hiZ(it.hi.z) {
+    // Item::centroid's operations, lane by lane.
+    centroidXY = 0.5 * loXY + 0.5 * hiXY;
+    centroidZ = 0.5 * loZ + 0.5 * hiZ;
+  }
+};
+
+// The bounds of some items, and of their centroids.
+struct ItemBounds {
+  PackedBox box, centroids;
+  void add(const Item& item) {
+    const PackedItem it(item);
+    box.extend(it.loXY, it.loZ, it.hiXY, it.hiZ);
+    centroids.extend(it.centroidXY, it.centroidZ, it.centroidXY, it.centroidZ);
+  }
+};
+
 // Subtrees of at least this many primitives may be built on a thread of
 // their own: below it, a thread's start costs more than the work.
 constexpr uint32_t kMinForkedPrimitives = 1u << 15;
@@ -113,7 +157,8 @@ class Builder {
   // Builds the tree, then reads `order` off the items' final places.
   void buildAll() {
     Subtree tree;
-    build(0, uint32_t(items_.size()), 1, tree);
+    const uint32_t n = uint32_t(items_.size());
+    build(0, n, 1, tree, boundsOf(0, n));
     out_.nodes = std::move(tree.nodes);
     out_.depth = tree.depth;
     out_.order.resize(items_.size());
@@ -128,10 +173,14 @@ class Builder {
     double cost = kInf;  // in units of one primitive test
   };
 
+  // The bin of a position t along the bins (NaN: the first).
+  static int binOfPosition(double t) { return t >= double(kBins - 1) ? kBins - 1 : (t > 0.0 ? int(t) : 0); }
+
   // Maps centroids to SAH bins along one axis. Halved coordinates keep
   // extents of up to twice DBL_MAX finite; a reciprocal that overflows
   // (denormal extents) gives inf or NaN, which the clamp sends to the end
-  // bins. Binning and partition call the same function, so they agree.
+  // bins. Binning (PackedBinning, the same operations) and partition (this)
+  // take the same steps, so they agree.
   struct Binning {
     int axis;
     double halfLo, binsPerHalfUnit;
@@ -140,8 +189,24 @@ class Builder {
           halfLo(0.5 * centroidBox.lo[a]),
           binsPerHalfUnit(kBins / (0.5 * centroidBox.hi[a] - 0.5 * centroidBox.lo[a])) {}
     int operator()(const glm::dvec3& centroid) const {
-      const double t = (0.5 * centroid[axis] - halfLo) * binsPerHalfUnit;
-      return t >= double(kBins - 1) ? kBins - 1 : (t > 0.0 ? int(t) : 0);
+      return binOfPosition((0.5 * centroid[axis] - halfLo) * binsPerHalfUnit);
+    }
+  };
+
+  // Binning's operations on all three axes, x and y in a pair.
+  struct PackedBinning {
+    Double2 halfLoXY, binsPerHalfUnitXY;
+    double halfLoZ, binsPerHalfUnitZ;
+    explicit PackedBinning(const Box& centroidBox) {
+      const Binning x(centroidBox, 0), y(centroidBox, 1), z(centroidBox, 2);
+      halfLoXY = Double2{x.halfLo, y.halfLo};
+      binsPerHalfUnitXY = Double2{x.binsPerHalfUnit, y.binsPerHalfUnit};
+      halfLoZ = z.halfLo;
+      binsPerHalfUnitZ = z.binsPerHalfUnit;
+    }
+    std::array<int, 3> operator()(const PackedItem& it) const {
+      const Double2 t = (0.5 * it.centroidXY - halfLoXY) * binsPerHalfUnitXY;
+      return {binOfPosition(t[0]), binOfPosition(t[1]), binOfPosition((0.5 * it.centroidZ - halfLoZ) * binsPerHalfUnitZ)};
     }
   };
 
@@ -150,18 +215,14 @@ class Builder {
   // decision depends on the items alone, so the tree is the same whether
   // its right halves are built here or on other threads: they touch
   // disjoint item ranges and their nodes are appended in the same order.
-  void build(uint32_t begin, uint32_t end, uint32_t level, Subtree& tree) {
+  void build(uint32_t begin, uint32_t end, uint32_t level, Subtree& tree, const ItemBounds& bounds) {
     const uint32_t nodeIndex = uint32_t(tree.nodes.size());
     tree.nodes.emplace_back();
     tree.depth = std::max(tree.depth, level);
     const uint32_t n = end - begin;
 
-    Box box, centroidBox;
-    for (uint32_t k = begin; k < end; ++k) {
-      box.extend(items_[k].lo, items_[k].hi);
-      const glm::dvec3 c = items_[k].centroid();
-      centroidBox.extend(c, c);
-    }
+    const Box box = bounds.box.unpacked();
+    const Box centroidBox = bounds.centroids.unpacked();
     BinaryBvhNode& node = tree.nodes[nodeIndex];
     node.boundsMin = glm::vec3(roundDown(box.lo.x), roundDown(box.lo.y), roundDown(box.lo.z));
     node.boundsMax = glm::vec3(roundUp(box.hi.x), roundUp(box.hi.y), roundUp(box.hi.z));
@@ -173,6 +234,8 @@ class Builder {
 
     uint32_t mid = begin + n / 2;  // coinciding centroids: split the list in the middle
     int axis = 0;
+    std::array<ItemBounds, 2> childBounds;
+    bool childBoundsKnown = false;
     if (!centroidsCoincide) {
       axis = extent.y > extent[axis] ? 1 : axis;
       axis = extent.z > extent[axis] ? 2 : axis;
@@ -187,9 +250,9 @@ class Builder {
           levelsForMedianSplits(std::max(split.leftCount, n - split.leftCount)) <= childLevels) {
         axis = split.axis;
         const Binning binOf(centroidBox, axis);
-        mid = uint32_t(std::partition(first + begin, first + end,
-                                      [&](const Item& it) { return binOf(it.centroid()) <= split.bin; }) -
-                       first);
+        mid = partitionWithBounds(begin, end, [&](const glm::dvec3& c) { return binOf(c) <= split.bin; },
+                                  childBounds);
+        childBoundsKnown = true;
       } else {
         // Median along the widest centroid extent: halves the count, so the
         // remaining depth always suffices.
@@ -200,20 +263,63 @@ class Builder {
     }
 
     tree.nodes[nodeIndex].countAxis = uint32_t(axis) << 16;
+    if (!childBoundsKnown) childBounds = {boundsOf(begin, mid), boundsOf(mid, end)};
     if (level <= forkLevels_ && end - mid >= kMinForkedPrimitives) {
-      std::future<Subtree> right = std::async(std::launch::async, [this, mid, end, level] {
+      std::future<Subtree> right = std::async(std::launch::async, [this, mid, end, level, &childBounds] {
         Subtree sub;
-        build(mid, end, level + 1, sub);
+        build(mid, end, level + 1, sub, childBounds[1]);
         return sub;
       });
-      build(begin, mid, level + 1, tree);
+      build(begin, mid, level + 1, tree, childBounds[0]);
       tree.nodes[nodeIndex].next = uint32_t(tree.nodes.size());
       tree.append(right.get());
       return;
     }
-    build(begin, mid, level + 1, tree);
+    build(begin, mid, level + 1, tree, childBounds[0]);
     tree.nodes[nodeIndex].next = uint32_t(tree.nodes.size());
-    build(mid, end, level + 1, tree);
+    build(mid, end, level + 1, tree, childBounds[1]);
+  }
+
+  // The bounds of items [begin, end) and of their centroids.
+  ItemBounds boundsOf(uint32_t begin, uint32_t end) const {
+    ItemBounds b;
+    for (uint32_t k = begin; k < end; ++k) b.add(items_[k]);
+    return b;
+  }
+
+  // Hoare's partition of items [begin, end) by `left(centroid)`, the swaps
+  // libstdc++'s std::partition makes (so trees are the ones it built), noting each
+  // side's bounds as it reads every item once: the children need them, and
+  // a pass of their own over the items cost a third of the build.
+  template <typename Left>
+  uint32_t partitionWithBounds(uint32_t begin, uint32_t end, Left left, std::array<ItemBounds, 2>& sides) {
+    uint32_t first = begin, last = end;
+    while (true) {
+      while (true) {
+        if (first == last) return first;
+        const Item& it = items_[first];
+        if (!left(it.centroid())) break;
+        sides[0].add(it);
+        ++first;
+      }
+      --last;
+      while (true) {
+        if (first == last) {
+          sides[1].add(items_[first]);  // read as going right above
+          return first;
+        }
+        const Item& it = items_[last];
+        if (left(it.centroid())) break;
+        sides[1].add(it);
+        --last;
+      }
+      // items_[first] goes right and items_[last] left: swapped, each is
+      // on its side for good.
+      sides[1].add(items_[first]);
+      sides[0].add(items_[last]);
+      std::swap(items_[first], items_[last]);
+      ++first;
+    }
   }
 
   // Binned SAH over every axis along which the centroids spread. No split
@@ -222,19 +328,19 @@ class Builder {
     Split best;
     const double area = box.halfArea();
     if (!(area > 0.0) || !std::isfinite(area)) return best;
-    std::array<std::array<Box, kBins>, 3> binBoxes;
+    std::array<std::array<PackedBox, kBins>, 3> binBoxes;
     std::array<std::array<uint32_t, kBins>, 3> binCounts{};
-    const Binning binnings[3] = {{centroidBox, 0}, {centroidBox, 1}, {centroidBox, 2}};
+    const PackedBinning binOf(centroidBox);
     std::array<bool, 3> spread{};
     for (int axis = 0; axis < 3; ++axis) spread[axis] = centroidBox.hi[axis] > centroidBox.lo[axis];
+    // Every axis is binned, spread or not, so the loop has no branch; the
+    // sweeps below pass over the bins of an axis that is not.
     for (uint32_t k = begin; k < end; ++k) {
-      const Item& it = items_[k];
-      const glm::dvec3 c = it.centroid();
+      const PackedItem it(items_[k]);
+      const std::array<int, 3> bins = binOf(it);
       for (int axis = 0; axis < 3; ++axis) {
-        if (!spread[axis]) continue;
-        const int b = binnings[axis](c);
-        binBoxes[axis][b].extend(it.lo, it.hi);
-        ++binCounts[axis][b];
+        binBoxes[axis][bins[axis]].extend(it.loXY, it.loZ, it.hiXY, it.hiZ);
+        ++binCounts[axis][bins[axis]];
       }
     }
     for (int axis = 0; axis < 3; ++axis) {
@@ -250,7 +356,7 @@ class Builder {
       uint32_t count = 0;
       for (int b = kBins - 1; b > 0; --b) {
         if (binCounts[axis][b] != 0) {
-          right.extend(binBoxes[axis][b]);
+          right.extend(binBoxes[axis][b].unpacked());
           count += binCounts[axis][b];
           rightHalfArea = right.halfArea();
         }
@@ -261,7 +367,7 @@ class Builder {
       count = 0;
       for (int b = 0; b < kBins - 1; ++b) {
         if (binCounts[axis][b] == 0) continue;
-        left.extend(binBoxes[axis][b]);
+        left.extend(binBoxes[axis][b].unpacked());
         count += binCounts[axis][b];
         if (rightCount[b + 1] == 0) continue;
         const double cost = kTraversalCost + (count * left.halfArea() + rightCount[b + 1] * rightArea[b + 1]) / area;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -25,9 +26,45 @@ bool contains(const dvec3& outerLo, const dvec3& outerHi, const dvec3& innerLo, 
   return glm::all(glm::lessThanEqual(outerLo, innerLo)) && glm::all(glm::greaterThanEqual(outerHi, innerHi));
 }
 
+// Whether f is the largest float at or below d (the smallest at or above,
+// when `up`): the nodes' bounds round outwards by one step at most.
+bool tightBelow(float f, double d) {
+  return double(f) <= d && double(std::nextafter(f, std::numeric_limits<float>::infinity())) > d;
+}
+bool tightAbove(float f, double d) {
+  return double(f) >= d && double(std::nextafter(f, -std::numeric_limits<float>::infinity())) < d;
+}
+
+// The double union of the primitives under `node`, checking on the way that
+// every node's float bounds are that union rounded outwards, no looser:
+// the builder carries each child's bounds from its parent's partition, and
+// loose bounds would still contain everything.
+PrimitiveBounds checkTightBounds(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds, uint32_t node) {
+  const BinaryBvhNode& n = bvh.nodes[node];
+  PrimitiveBounds all{dvec3(std::numeric_limits<double>::infinity()), dvec3(-std::numeric_limits<double>::infinity())};
+  const auto add = [&](const PrimitiveBounds& b) {
+    all.lo = glm::min(all.lo, b.lo);
+    all.hi = glm::max(all.hi, b.hi);
+  };
+  if (n.primitiveCount() == 0) {
+    add(checkTightBounds(bvh, bounds, node + 1));
+    add(checkTightBounds(bvh, bounds, n.next));
+  } else {
+    for (uint32_t k = n.next; k < n.next + n.primitiveCount(); ++k) add(bounds[bvh.order[k]]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_TRUE(tightBelow(n.boundsMin[a], all.lo[a])) << "node " << node << " axis " << a << ": " << n.boundsMin[a]
+                                                       << " for " << all.lo[a];
+    EXPECT_TRUE(tightAbove(n.boundsMax[a], all.hi[a])) << "node " << node << " axis " << a << ": " << n.boundsMax[a]
+                                                       << " for " << all.hi[a];
+  }
+  return all;
+}
+
 // Walks the whole tree and checks the layout and the guarantees the kernel
 // relies on: each node reached once, first child next, leaves of 1..max
-// primitives that together cover `order` once, bounds that contain, the
+// primitives that together cover `order` once, bounds that contain (and
+// no more than rounding outwards needs), the
 // reported depth, and `order` a permutation of the inputs.
 void checkTree(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds) {
   const size_t n = bounds.size();
@@ -87,6 +124,7 @@ void checkTree(const BuiltBvh& bvh, const std::vector<PrimitiveBounds>& bounds) 
       << "leaves do not cover order once";
   EXPECT_EQ(bvh.depth, depth);
   EXPECT_LE(bvh.depth, device::kBvhMaxDepth);
+  checkTightBounds(bvh, bounds, 0);
 }
 
 struct Ray {
