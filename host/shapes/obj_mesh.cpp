@@ -68,17 +68,51 @@ std::vector<glm::dvec3> placePoints(const MeshTransform& t, std::vector<glm::dve
 
 bool mirrors(const MeshTransform& t) { return ((t.scale.x < 0.0) != (t.scale.y < 0.0)) != (t.scale.z < 0.0); }
 
-std::optional<MeshEdgeFault> findEdgeFault(const MeshTriangles& triangles) {
-  // Each directed edge as one sortable key: low vertex, high vertex, and
-  // whether it runs from high to low (vertex indices < 2^31).
-  std::vector<uint64_t> keys;
-  keys.reserve(3 * triangles.size());
+namespace {
+
+// Directed edge e of triangle t as one sortable key: low vertex, high
+// vertex, and whether it runs from high to low (vertex indices < 2^31).
+uint64_t edgeKey(const std::array<uint32_t, 3>& t, int e) {
+  const uint64_t a = t[e], b = t[(e + 1) % 3];
+  return (std::min(a, b) << 32) | (std::max(a, b) << 1) | uint64_t(a > b);
+}
+
+// Every edge's key, in ascending order. A mesh's vertices are few and each
+// is the low vertex of a handful of edges, so the keys are counted into one
+// bucket per low vertex and each bucket sorted: the order std::sort gives,
+// in two passes over the edges (a million-triangle mesh's sort took longer
+// than reading its file in parts). Indices far beyond the edges' count (not
+// a mesh's) are sorted whole.
+std::vector<uint64_t> sortedEdgeKeys(const MeshTriangles& triangles) {
+  const size_t edges = 3 * triangles.size();
+  std::vector<uint64_t> keys(edges);
+  uint32_t highest = 0;
+  for (const auto& t : triangles) highest = std::max({highest, t[0], t[1], t[2]});
+  if (highest > edges) {
+    for (size_t k = 0; k < triangles.size(); ++k)
+      for (int e = 0; e < 3; ++e) keys[3 * k + size_t(e)] = edgeKey(triangles[k], e);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+  }
+  std::vector<size_t> bucketEnd(size_t(highest) + 2, 0);  // [v + 1]: keys of low vertex <= v
+  for (const auto& t : triangles)
+    for (int e = 0; e < 3; ++e) ++bucketEnd[size_t(std::min(t[e], t[(e + 1) % 3])) + 1];
+  for (size_t v = 1; v < bucketEnd.size(); ++v) bucketEnd[v] += bucketEnd[v - 1];
+  std::vector<size_t> next(bucketEnd.begin(), bucketEnd.end() - 1);  // each bucket's next free place
   for (const auto& t : triangles)
     for (int e = 0; e < 3; ++e) {
-      const uint64_t a = t[e], b = t[(e + 1) % 3];
-      keys.push_back((std::min(a, b) << 32) | (std::max(a, b) << 1) | uint64_t(a > b));
+      const uint64_t key = edgeKey(t, e);
+      keys[next[size_t(key >> 32)]++] = key;
     }
-  std::sort(keys.begin(), keys.end());
+  for (size_t v = 0; v + 1 < bucketEnd.size(); ++v)
+    std::sort(keys.begin() + bucketEnd[v], keys.begin() + bucketEnd[v + 1]);
+  return keys;
+}
+
+}  // namespace
+
+std::optional<MeshEdgeFault> findEdgeFault(const MeshTriangles& triangles) {
+  const std::vector<uint64_t> keys = sortedEdgeKeys(triangles);
   for (size_t i = 0; i < keys.size();) {
     size_t j = i + 1;
     while (j < keys.size() && (keys[j] >> 1) == (keys[i] >> 1)) ++j;

@@ -4,7 +4,11 @@
 // file, the line and the token; what it accepts is read exactly.
 #include "shapes/obj_mesh.h"
 
+#include <algorithm>
 #include <atomic>
+#include <map>
+#include <optional>
+#include <random>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -205,6 +209,75 @@ TEST_F(ObjMeshTest, ForwardReferencesAreCheckedAgainstTheWholeFile) {
   EXPECT_EQ(load("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").triangles.size(), 1u);
   expectError("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
               "line 5, \"4\": face 2 refers to vertex 4, but the file has 3 vertices (1 to 3)");
+}
+
+// The first edge fault in the order of (low vertex, high vertex), found
+// plainly: every edge's directions counted in a map.
+std::optional<std::pair<uint64_t, MeshEdgeFault::Kind>> plainFirstEdgeFault(const MeshTriangles& triangles) {
+  std::map<uint64_t, std::pair<int, int>> uses;  // (low << 32 | high): (low to high, high to low)
+  for (const auto& t : triangles)
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = t[e], b = t[(e + 1) % 3];
+      auto& u = uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+      ++(a < b ? u.first : u.second);
+    }
+  for (const auto& [edge, u] : uses) {
+    if (u.first == 1 && u.second == 1) continue;
+    const int count = u.first + u.second;
+    return std::pair{edge, count == 1   ? MeshEdgeFault::Kind::Open
+                           : count == 2 ? MeshEdgeFault::Kind::SameDirection
+                                        : MeshEdgeFault::Kind::Shared};
+  }
+  return std::nullopt;
+}
+
+// A closed grid on a torus (every edge met once each way), with `faults`
+// triangles then flipped, removed or repeated at random, and vertex indices
+// spread by `spread` (beyond the edges' count, the search sorts whole).
+MeshTriangles torusWithFaults(uint32_t side, int faults, uint32_t spread, std::mt19937& rng) {
+  MeshTriangles triangles;
+  const auto at = [&](uint32_t i, uint32_t j) { return ((i % side) * side + (j % side)) * spread; };
+  for (uint32_t i = 0; i < side; ++i)
+    for (uint32_t j = 0; j < side; ++j) {
+      triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  for (int f = 0; f < faults; ++f) {
+    const size_t k = rng() % triangles.size();
+    switch (rng() % 3) {
+      case 0: std::swap(triangles[k][1], triangles[k][2]); break;
+      case 1: triangles.erase(triangles.begin() + std::ptrdiff_t(k)); break;
+      default: triangles.push_back(triangles[k]); break;
+    }
+  }
+  std::shuffle(triangles.begin(), triangles.end(), rng);
+  return triangles;
+}
+
+TEST(EdgeFaults, FirstFaultIsTheOneAMapOfEdgesFinds) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 300; ++trial) {
+    const uint32_t side = 3 + uint32_t(rng() % 20);
+    const int faults = trial % 4 == 0 ? 0 : 1 + int(rng() % 5);
+    const uint32_t spread = trial % 3 == 0 ? 1000003u : 1u;
+    const MeshTriangles triangles = torusWithFaults(side, faults, spread, rng);
+    const auto expected = plainFirstEdgeFault(triangles);
+    const auto found = findEdgeFault(triangles);
+    ASSERT_EQ(found.has_value(), expected.has_value()) << "trial " << trial;
+    if (!found) continue;
+    EXPECT_EQ(found->kind, expected->second) << "trial " << trial;
+    const uint64_t edge = (uint64_t(std::min(found->from, found->to)) << 32) | std::max(found->from, found->to);
+    EXPECT_EQ(edge, expected->first) << "trial " << trial;
+    ASSERT_FALSE(found->triangles.empty());
+    for (size_t k : found->triangles) {
+      const auto& t = triangles[k];
+      int meets = 0;
+      for (int e = 0; e < 3; ++e)
+        meets += std::min(t[e], t[(e + 1) % 3]) == std::min(found->from, found->to) &&
+                 std::max(t[e], t[(e + 1) % 3]) == std::max(found->from, found->to);
+      EXPECT_EQ(meets, 1) << "trial " << trial << ": triangle " << k << " does not hold the edge";
+    }
+  }
 }
 
 }  // namespace
