@@ -15,6 +15,7 @@
 #include "bench/optics_bench.h"
 #include "compile/compile_scene.h"
 #include "compile/wide_bvh.h"
+#include "backend/cpu_code.h"
 #include "kernel/beam_kernel.h"
 #include "rng/philox.h"
 
@@ -76,50 +77,91 @@ std::vector<CeilingRay> incoherentRays(const RayCeilingGeometry& geometry, uint6
   return rays;
 }
 
-void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
-                    unsigned threads) {
+namespace {
+
+// Rays [begin, end) walked one at a time.
+inline void walkRays(device::BeamKernel& kernel, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
+                     size_t begin, size_t end) {
+  for (size_t i = begin; i < end; ++i) {
+    device::BeamKernel::ObjectHit hit;
+    const bool found = kernel.intersectObjects(rays[i].origin, rays[i].direction, kFar, false, hit);
+    hits[i] = {found, hit.primitive, hit.t};
+  }
+}
+
+// Rays [begin, end) walked kCeilingWalksInFlight at a time, one node or
+// leaf of each in turn, as the CPU tracer's threads step their beams'
+// walks (runInterleaved).
+inline void walkRaysInTurn(device::BeamKernel& kernel, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
+                           size_t begin, size_t end) {
+  device::BeamKernel::WalkState walks[kCeilingWalksInFlight];
+  constexpr size_t kIdle = SIZE_MAX;
+  size_t rayOf[kCeilingWalksInFlight];
+  std::fill(rayOf, rayOf + kCeilingWalksInFlight, kIdle);
+  size_t next = begin, live = 0;
+  const auto start = [&](size_t k) {
+    kernel.startWalk(walks[k], rays[next].origin, rays[next].direction, kFar, false);
+    rayOf[k] = next++;
+    ++live;
+  };
+  for (size_t k = 0; k < kCeilingWalksInFlight && next < end; ++k) start(k);
+  while (live > 0) {
+    for (size_t k = 0; k < kCeilingWalksInFlight; ++k) {
+      if (rayOf[k] == kIdle || kernel.stepWalk(walks[k])) continue;
+      hits[rayOf[k]] = {walks[k].found, walks[k].hit.primitive, walks[k].hit.t};
+      rayOf[k] = kIdle;
+      --live;
+      if (next < end) start(k);
+    }
+  }
+}
+
+// Both walks compiled for the baseline and for x86-64-v3, each with the
+// walk inlined whole (the CPU tracer's entry points do the same,
+// cpu_tracer.cpp), so that the ceiling times the machine code the renderer
+// runs on this processor (fastestCpuCode), not the baseline's.
+__attribute__((flatten)) void walkRaysBaseline(device::BeamKernel& kernel, std::span<const CeilingRay> rays,
+                                               std::span<CeilingHit> hits, size_t begin, size_t end, bool inTurn) {
+  if (inTurn) walkRaysInTurn(kernel, rays, hits, begin, end);
+  else walkRays(kernel, rays, hits, begin, end);
+}
+#if defined(__x86_64__)
+__attribute__((flatten, target("arch=x86-64-v3"))) void walkRaysV3(device::BeamKernel& kernel,
+                                                                   std::span<const CeilingRay> rays,
+                                                                   std::span<CeilingHit> hits, size_t begin,
+                                                                   size_t end, bool inTurn) {
+  if (inTurn) walkRaysInTurn(kernel, rays, hits, begin, end);
+  else walkRays(kernel, rays, hits, begin, end);
+}
+#endif
+
+void traceSpectraceBlocks(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
+                          std::span<CeilingHit> hits, unsigned threads, bool inTurn) {
   device::TraceConstants constants{};
   constants.objectPrimitives = uint32_t(geometry.primitives.size());
+  const CpuCode code = fastestCpuCode();
   forEachBlock(rays.size(), threads, [&](size_t begin, size_t end) {
     // Each thread its own kernel, as the CPU reference does (its shared
     // functions cannot be const).
     device::BeamKernel kernel(constants, {}, {}, {});
     kernel.setObjects(geometry.primitives, geometry.nodes, {}, {});
-    for (size_t i = begin; i < end; ++i) {
-      device::BeamKernel::ObjectHit hit;
-      const bool found = kernel.intersectObjects(rays[i].origin, rays[i].direction, kFar, false, hit);
-      hits[i] = {found, hit.primitive, hit.t};
-    }
+#if defined(__x86_64__)
+    if (code == CpuCode::X86_64_V3) return walkRaysV3(kernel, rays, hits, begin, end, inTurn);
+#endif
+    walkRaysBaseline(kernel, rays, hits, begin, end, inTurn);
   });
+}
+
+}  // namespace
+
+void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
+                    unsigned threads) {
+  traceSpectraceBlocks(geometry, rays, hits, threads, false);
 }
 
 void traceSpectraceInterleaved(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
                                std::span<CeilingHit> hits, unsigned threads) {
-  device::TraceConstants constants{};
-  constants.objectPrimitives = uint32_t(geometry.primitives.size());
-  forEachBlock(rays.size(), threads, [&](size_t begin, size_t end) {
-    device::BeamKernel kernel(constants, {}, {}, {});
-    kernel.setObjects(geometry.primitives, geometry.nodes, {}, {});
-    std::vector<device::BeamKernel::WalkState> walks(kCeilingWalksInFlight);
-    constexpr size_t kIdle = SIZE_MAX;
-    std::vector<size_t> rayOf(kCeilingWalksInFlight, kIdle);
-    size_t next = begin, live = 0;
-    const auto start = [&](size_t k) {
-      kernel.startWalk(walks[k], rays[next].origin, rays[next].direction, kFar, false);
-      rayOf[k] = next++;
-      ++live;
-    };
-    for (size_t k = 0; k < kCeilingWalksInFlight && next < end; ++k) start(k);
-    while (live > 0) {
-      for (size_t k = 0; k < kCeilingWalksInFlight; ++k) {
-        if (rayOf[k] == kIdle || kernel.stepWalk(walks[k])) continue;
-        hits[rayOf[k]] = {walks[k].found, walks[k].hit.primitive, walks[k].hit.t};
-        rayOf[k] = kIdle;
-        --live;
-        if (next < end) start(k);
-      }
-    }
-  });
+  traceSpectraceBlocks(geometry, rays, hits, threads, true);
 }
 
 HitComparison compareHits(std::span<const CeilingHit> a, std::span<const CeilingHit> b, double relative) {
@@ -239,6 +281,7 @@ void EmbreeScene::trace(std::span<const CeilingRay>, std::span<CeilingHit>, unsi
 RayCeilingRow runRayCeiling(uint64_t triangles, uint64_t rayCount, unsigned threads, const std::atomic<bool>& cancel) {
   RayCeilingRow row;
   row.threads = std::max(1u, threads);
+  row.cpuCode = cpuCodeName(fastestCpuCode());
   const RayCeilingGeometry geometry = meshCeilingGeometry(triangles);
   row.triangles = geometry.primitives.size();
   row.bytesPerTriangle = geometry.bytesPerPrimitive();

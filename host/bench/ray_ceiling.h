@@ -95,6 +95,7 @@ struct RayCeilingRow {
   bool embree = false;  // false: built without Embree, only spectrace's figures
   uint64_t triangles = 0, rays = 0, hits = 0;
   unsigned threads = 0;
+  const char* cpuCode = "";  // the machine code of spectrace's walks (cpuCodeName)
   double bytesPerTriangle = 0.0, embreeBytesPerTriangle = 0.0;
   // Least of the rounds, in seconds, on one thread and on `threads`.
   double spectrace1 = 0.0, spectraceN = 0.0, embree1 = 0.0, embreeN = 0.0;

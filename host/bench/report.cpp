@@ -208,9 +208,9 @@ void writeProfileSection(std::ofstream& md, const BenchReport& report) {
     md << "### Ray ceiling (Embree)\n\n";
     md << fmt::format("{} incoherent closest-hit rays (from points around the mesh, each towards a "
                       "point in a ball about it) through the optics bench's mesh of {} triangles, by the shared "
-                      "kernel's BVH walk (`intersectObjects`, on the CPU) and by Intel Embree {}; wall time, least "
-                      "of 2, same run.\n\n",
-                      r.rays, r.triangles, r.embree ? "(RTC_BUILD_QUALITY_HIGH, rtcIntersect1)" : "(unavailable in this build)");
+                      "kernel's BVH walk (`intersectObjects`, on the CPU, {} code as the renderer runs it) and by "
+                      "Intel Embree {}; wall time, least of 2, same run.\n\n",
+                      r.rays, r.triangles, r.cpuCode, r.embree ? "(RTC_BUILD_QUALITY_HIGH, rtcIntersect1)" : "(unavailable in this build)");
     md << "| tracer | threads | Mray/s | bytes/triangle | spectrace : Embree |\n| --- | ---: | ---: | ---: | ---: |\n";
     const double m = double(r.rays) * 1e-6;
     md << fmt::format("| spectrace | 1 | {:.3f} | {:.1f} | |\n", m / r.spectrace1, r.bytesPerTriangle);

@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "backend/cpu_code.h"
 #include "bench/optics_bench.h"
 #include "bench/ray_ceiling.h"
 #include "bench/throughput_ceiling.h"
@@ -258,8 +259,9 @@ RayCeilingRow runRayCeilingSection(const BenchCommand& command, uint64_t triangl
   const uint64_t rays = std::min(command.profileBeams, uint64_t(1) << 20);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("\nRay ceiling: {} incoherent closest-hit rays through a mesh of {} triangles, spectrace's BVH "
-             "(shared kernel, CPU) against Embree, 1 and {} threads (wall time, least of 2)\n",
-             rays, triangles, threads);
+             "(shared kernel, CPU, {} code as the renderer runs it) against Embree, 1 and {} threads (wall time, "
+             "least of 2)\n",
+             rays, triangles, cpuCodeName(fastestCpuCode()), threads);
   const RayCeilingRow r = runRayCeiling(triangles, rays, threads, cancel);
   const double m = double(r.rays) * 1e-6;
   fmt::print("{:<10} {:>10} {:>8} {:>14} {:>14} {:>16}\n", "tracer", "triangles", "threads", "Mray/s", "bytes/triangle",
