@@ -287,10 +287,10 @@ class Builder {
     return b;
   }
 
-  // Hoare's partition of items [begin, end) by `left(centroid)`, the swaps
-  // libstdc++'s std::partition makes (so trees are the ones it built), noting each
-  // side's bounds as it reads every item once: the children need them, and
-  // a pass of their own over the items cost a third of the build.
+  // Hoare's partition of items [begin, end) by `left(centroid)`, with the
+  // swaps libstdc++'s std::partition makes (so trees are the ones it
+  // built), noting each side's bounds as it reads every item once: the
+  // children need them, and would otherwise read their items again.
   template <typename Left>
   uint32_t partitionWithBounds(uint32_t begin, uint32_t end, Left left, std::array<ItemBounds, 2>& sides) {
     uint32_t first = begin, last = end;
