@@ -13,6 +13,7 @@
 #include "lights/light.h"
 #include "scene/scene_object.h"
 #include "json/scene_error.h"
+#include "json/sha256.h"  // sceneSha256Hex, as in Scene::sourceSha256
 #include "spectrum/spd.h"
 
 namespace spectrace {
@@ -94,8 +95,6 @@ std::string readSceneText(const std::filesystem::path& file);
 // with `text`, the bytes themselves (as loadScene's sourceText).
 nlohmann::json readSceneJson(const std::filesystem::path& file, std::string* sha256 = nullptr,
                              std::string* text = nullptr);
-// Lowercase hex SHA-256 of `bytes` (OpenSSL EVP), as in Scene::sourceSha256.
-std::string sceneSha256Hex(std::string_view bytes);
 // The digest of the files `scene` names, in scene order (each light's CSV
 // spectrum, then each object's OBJ mesh and reflectance CSV): SHA-256 of
 // their digests, one a line; empty when it names none. A state's

@@ -32,7 +32,6 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <openssl/evp.h>
 
 #include "json/input_file.h"
 #include "camera/camera_types.h"
@@ -45,21 +44,6 @@
 #include "scene/validate_scene.h"
 
 namespace spectrace {
-
-std::string sceneSha256Hex(std::string_view bytes) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1)
-    throw SceneError("SHA-256 computation failed (OpenSSL EVP_Digest)");
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  out.reserve(2 * length);
-  for (unsigned int i = 0; i < length; ++i) {
-    out.push_back(hex[digest[i] >> 4]);
-    out.push_back(hex[digest[i] & 15]);
-  }
-  return out;
-}
 
 namespace {
 
@@ -219,6 +203,53 @@ bool parseOutputSpectral(const jf::Source& c, const Json& v, const std::string& 
 
 namespace {
 
+// A file the scene names, with the digest its loader took of the bytes it
+// read, where it took one (an OBJ mesh's; empty otherwise).
+struct NamedFile {
+  fs::path path;
+  std::string digestAsRead;
+};
+
+// referencedFiles, with their digests as read.
+std::vector<NamedFile> namedFiles(const Scene& scene) {
+  std::vector<NamedFile> files;
+  for (const fs::path& f : scene.camera.model->files()) files.push_back({f, ""});
+  for (const Light& light : scene.lights) {
+    files.push_back({light.spdFile, ""});
+    files.push_back({light.photometryFile, ""});
+  }
+  for (const SceneObject& object : scene.objects) {
+    files.push_back({object.shape.meshFile, object.shape.meshSha256});
+    files.push_back({object.material.reflectanceFile, ""});
+  }
+  std::erase_if(files, [](const NamedFile& f) { return f.path.empty(); });
+  return files;
+}
+
+// referencedFilesSha256, taking each file's digest as its loader took it
+// where `asRead` and it took one, else reading the file again.
+std::string namedFilesSha256(const Scene& scene, bool asRead) {
+  const std::vector<NamedFile> files = namedFiles(scene);
+  if (files.empty()) return "";
+  std::string digests;
+  for (const NamedFile& f : files) {
+    if (asRead && !f.digestAsRead.empty()) {
+      digests += f.digestAsRead + "\n";
+      continue;
+    }
+    try {
+      digests += sceneSha256Hex(readInputFile(f.path, "file named by the scene", uint64_t(1) << 30)) + "\n";
+    } catch (const InputFileError& e) {  // changed since it was parsed
+      throw SceneError(fmt::format("{}: {}", scene.sourcePath.empty() ? "<scene>" : scene.sourcePath.string(), e.what()));
+    }
+  }
+  return sceneSha256Hex(digests);
+}
+
+}  // namespace
+
+namespace {
+
 Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) {
   const jf::Source c = sourceFor(file);
   static const Keys kTop = {"spectrum", "observer", "camera", "lights", "objects", "render", "output"};
@@ -276,7 +307,9 @@ Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) 
   scene.sourceSha256 = sceneSha256Hex(sourceText);
   scene.sourceText = std::move(sourceText);
   validateScene(scene, checker);
-  scene.referencedFilesSha256 = referencedFilesSha256(scene);
+  // A mesh's digest is of the bytes it was read from, so the fingerprint
+  // names what is rendered even if the file changes meanwhile.
+  scene.referencedFilesSha256 = namedFilesSha256(scene, true);
   return scene;
 }
 
@@ -288,32 +321,12 @@ Scene parseScene(const std::string& jsonText, const fs::path& file) {
 }
 
 std::vector<fs::path> referencedFiles(const Scene& scene) {
-  std::vector<fs::path> files = scene.camera.model->files();
-  for (const Light& light : scene.lights) {
-    files.push_back(light.spdFile);
-    files.push_back(light.photometryFile);
-  }
-  for (const SceneObject& object : scene.objects) {
-    files.push_back(object.shape.meshFile);
-    files.push_back(object.material.reflectanceFile);
-  }
-  std::erase_if(files, [](const fs::path& f) { return f.empty(); });
+  std::vector<fs::path> files;
+  for (NamedFile& f : namedFiles(scene)) files.push_back(std::move(f.path));
   return files;
 }
 
-std::string referencedFilesSha256(const Scene& scene) {
-  const std::vector<fs::path> files = referencedFiles(scene);
-  if (files.empty()) return "";
-  std::string digests;
-  for (const fs::path& f : files) {
-    try {
-      digests += sceneSha256Hex(readInputFile(f, "file named by the scene", uint64_t(1) << 30)) + "\n";
-    } catch (const InputFileError& e) {  // changed since it was parsed
-      throw SceneError(fmt::format("{}: {}", scene.sourcePath.empty() ? "<scene>" : scene.sourcePath.string(), e.what()));
-    }
-  }
-  return sceneSha256Hex(digests);
-}
+std::string referencedFilesSha256(const Scene& scene) { return namedFilesSha256(scene, false); }
 
 Scene parseSceneJson(const nlohmann::json& root, const fs::path& file) {
   return parseRoot(root, file, root.dump());

@@ -368,6 +368,25 @@ TEST_F(SceneTest, BundledInputFilesServeTheCsvInPlaceOfTheDisk) {
   }
 }
 
+// A mesh's digest in the scene's fingerprint is of the bytes its loader
+// read (taken on another thread while the mesh was checked), so the
+// fingerprint is the same as reading every file again while they are
+// unchanged, and stays that of what was read once the file changes.
+TEST_F(SceneTest, MeshDigestIsOfTheBytesRead) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  write("tetra.obj", obj);
+  json j = exampleScene();
+  j["objects"] = json::array(
+      {{{"type", "mesh"}, {"file", "tetra.obj"}, {"material", {{"type", "diffuse"}, {"reflectance", 0.5}}}}});
+  const Scene s = load(j);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].shape.meshSha256, sceneSha256Hex(obj));
+  EXPECT_EQ(s.referencedFilesSha256, referencedFilesSha256(s));
+  write("tetra.obj", obj + "# changed\n");
+  EXPECT_NE(s.referencedFilesSha256, referencedFilesSha256(s)) << "the files are read again";
+  EXPECT_EQ(s.objects[0].shape.meshSha256, sceneSha256Hex(obj));
+}
+
 TEST_F(SceneTest, Sha256OfKnownStrings) {
   EXPECT_EQ(sceneSha256Hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   EXPECT_EQ(sceneSha256Hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <future>
 #include <numbers>
 #include <system_error>
 
@@ -13,6 +14,7 @@
 
 #include "camera/world_limits.h"
 #include "json/input_file.h"
+#include "json/sha256.h"
 #include "shapes/obj_text.h"
 
 namespace spectrace {
@@ -245,9 +247,15 @@ std::string parseObjMesh(const jf::Source& c, const std::string& ptr, std::strin
                          const MeshTransform& transform, uint64_t maxTriangles, Shape& shape) {
   const std::string quoted = jf::jsonQuoted(asWritten);
   ObjText obj = readObjText(text);
-  text = std::string();  // up to 1 GiB, not needed after
   if (obj.fault)
     c.fail(ptr, fmt::format("{} line {}, {}: {}", quoted, obj.fault->line, obj.fault->token, obj.fault->what));
+  // The digest of the bytes just read (the scene's fingerprint holds it),
+  // taken on another thread while this one checks and places the mesh, which
+  // it does alone; the text (up to 1 GiB) goes with it and is freed there.
+  // (Policy async | deferred: where no thread can start, the hash runs at
+  // get() instead.)
+  std::future<std::string> digest = std::async(std::launch::async | std::launch::deferred,
+                                               [bytes = std::move(text)] { return sceneSha256Hex(bytes); });
   const size_t vertexCount = obj.vertices.size();
   if (vertexCount > kMaxMeshVertices)
     c.fail(ptr, fmt::format("{} has {} vertices; a mesh has at most {}", quoted, vertexCount, kMaxMeshVertices));
@@ -292,6 +300,7 @@ std::string parseObjMesh(const jf::Source& c, const std::string& ptr, std::strin
   shape.vertices = std::move(placed);
   shape.triangles = std::move(triangles);
   shape.closed = notClosed.empty();
+  shape.meshSha256 = digest.get();
   return notClosed;
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -37,6 +38,9 @@ struct Shape {
   // object's transform (scale, then rotate x, y, z in degrees, then
   // translate). Counter-clockwise seen from outside faces outwards.
   std::filesystem::path meshFile;
+  // The SHA-256 (sceneSha256Hex) of the OBJ bytes the mesh was read from;
+  // empty for a mesh given as vertices and triangles.
+  std::string meshSha256;
   std::vector<glm::dvec3> vertices;
   std::vector<std::array<uint32_t, 3>> triangles;
   // What the reader found: mesh: every edge is shared by exactly two
