@@ -55,7 +55,8 @@ struct Scene {
   // of a scene built from JSON): a render state carries them.
   std::string sourceText;
   // Hex digest of the files the scene names (CSV spectra and reflectances,
-  // OBJ meshes; referencedFilesSha256), empty when it names none.
+  // OBJ meshes; referencedFilesSha256), empty when it names none. A mesh's
+  // part is the digest of the bytes its loader parsed (Shape::meshSha256).
   std::string referencedFilesSha256;
 };
 
@@ -99,7 +100,8 @@ nlohmann::json readSceneJson(const std::filesystem::path& file, std::string* sha
 // spectrum, then each object's OBJ mesh and reflectance CSV): SHA-256 of
 // their digests, one a line; empty when it names none. A state's
 // fingerprint holds it, so merges, resumes and MPI ranks never join films
-// traced from other meshes or spectra under one scene file.
+// traced from other meshes or spectra under one scene file. Reads every
+// file again (under BundledInputFiles, the bundle's bytes).
 std::string referencedFilesSha256(const Scene& scene);
 // Those files, in that order (a file named twice is listed twice), by the
 // paths the loader resolved (relative to the working folder when the scene
