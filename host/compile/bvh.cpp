@@ -105,19 +105,21 @@ struct PackedBox {
 struct PackedItem {
   Double2 loXY, hiXY, centroidXY;
   double loZ, hiZ, centroidZ;
+  PackedItem() = default;
   explicit PackedItem(const Item& it)
       : loXY{it.lo.x, it.lo.y}, hiXY{it.hi.x, it.hi.y}, loZ(it.lo.z), hiZ(it.hi.z) {
     // Item::centroid's operations, lane by lane.
     centroidXY = 0.5 * loXY + 0.5 * hiXY;
     centroidZ = 0.5 * loZ + 0.5 * hiZ;
   }
+  double centroid(int axis) const { return axis < 2 ? centroidXY[axis] : centroidZ; }
 };
 
 // The bounds of some items, and of their centroids.
 struct ItemBounds {
   PackedBox box, centroids;
-  void add(const Item& item) {
-    const PackedItem it(item);
+  void add(const Item& item) { add(PackedItem(item)); }
+  void add(const PackedItem& it) {
     box.extend(it.loXY, it.loZ, it.hiXY, it.hiZ);
     centroids.extend(it.centroidXY, it.centroidZ, it.centroidXY, it.centroidZ);
   }
@@ -173,40 +175,21 @@ class Builder {
     double cost = kInf;  // in units of one primitive test
   };
 
-  // The bin of a position t along the bins (NaN: the first).
-  static int binOfPosition(double t) { return t >= double(kBins - 1) ? kBins - 1 : (t > 0.0 ? int(t) : 0); }
-
-  // Maps centroids to SAH bins along one axis. Halved coordinates keep
+  // Maps centroids to SAH bins along each axis. Halved coordinates keep
   // extents of up to twice DBL_MAX finite; a reciprocal that overflows
   // (denormal extents) gives inf or NaN, which the clamp sends to the end
-  // bins. Binning (PackedBinning, the same operations) and partition (this)
-  // take the same steps, so they agree.
+  // bins. Binning and partition both call it, so they agree.
   struct Binning {
-    int axis;
-    double halfLo, binsPerHalfUnit;
-    Binning(const Box& centroidBox, int a)
-        : axis(a),
-          halfLo(0.5 * centroidBox.lo[a]),
-          binsPerHalfUnit(kBins / (0.5 * centroidBox.hi[a] - 0.5 * centroidBox.lo[a])) {}
-    int operator()(const glm::dvec3& centroid) const {
-      return binOfPosition((0.5 * centroid[axis] - halfLo) * binsPerHalfUnit);
-    }
-  };
-
-  // Binning's operations on all three axes, x and y in a pair.
-  struct PackedBinning {
-    Double2 halfLoXY, binsPerHalfUnitXY;
-    double halfLoZ, binsPerHalfUnitZ;
-    explicit PackedBinning(const Box& centroidBox) {
-      const Binning x(centroidBox, 0), y(centroidBox, 1), z(centroidBox, 2);
-      halfLoXY = Double2{x.halfLo, y.halfLo};
-      binsPerHalfUnitXY = Double2{x.binsPerHalfUnit, y.binsPerHalfUnit};
-      halfLoZ = z.halfLo;
-      binsPerHalfUnitZ = z.binsPerHalfUnit;
+    glm::dvec3 halfLo, binsPerHalfUnit;
+    explicit Binning(const Box& centroidBox)
+        : halfLo(0.5 * centroidBox.lo), binsPerHalfUnit(double(kBins) / (0.5 * centroidBox.hi - halfLo)) {}
+    // The bin of centroid coordinate c on `axis`.
+    int operator()(double c, int axis) const {
+      const double t = (0.5 * c - halfLo[axis]) * binsPerHalfUnit[axis];
+      return t >= double(kBins - 1) ? kBins - 1 : (t > 0.0 ? int(t) : 0);
     }
     std::array<int, 3> operator()(const PackedItem& it) const {
-      const Double2 t = (0.5 * it.centroidXY - halfLoXY) * binsPerHalfUnitXY;
-      return {binOfPosition(t[0]), binOfPosition(t[1]), binOfPosition((0.5 * it.centroidZ - halfLoZ) * binsPerHalfUnitZ)};
+      return {(*this)(it.centroidXY[0], 0), (*this)(it.centroidXY[1], 1), (*this)(it.centroidZ, 2)};
     }
   };
 
@@ -249,9 +232,9 @@ class Builder {
       if (split.axis >= 0 &&
           levelsForMedianSplits(std::max(split.leftCount, n - split.leftCount)) <= childLevels) {
         axis = split.axis;
-        const Binning binOf(centroidBox, axis);
-        mid = partitionWithBounds(begin, end, [&](const glm::dvec3& c) { return binOf(c) <= split.bin; },
-                                  childBounds);
+        const Binning binOf(centroidBox);
+        const auto goesLeft = [&](const PackedItem& it) { return binOf(it.centroid(axis), axis) <= split.bin; };
+        mid = partitionWithBounds(begin, end, goesLeft, childBounds);
         childBoundsKnown = true;
       } else {
         // Median along the widest centroid extent: halves the count, so the
@@ -287,36 +270,36 @@ class Builder {
     return b;
   }
 
-  // Hoare's partition of items [begin, end) by `left(centroid)`, with the
+  // Hoare's partition of items [begin, end) by `left(item)`, with the
   // swaps libstdc++'s std::partition makes (so trees are the ones it
   // built), noting each side's bounds as it reads every item once: the
   // children need them, and would otherwise read their items again.
   template <typename Left>
   uint32_t partitionWithBounds(uint32_t begin, uint32_t end, Left left, std::array<ItemBounds, 2>& sides) {
     uint32_t first = begin, last = end;
+    PackedItem goesRight, goesLeft;  // the pair a pass swaps
     while (true) {
       while (true) {
         if (first == last) return first;
-        const Item& it = items_[first];
-        if (!left(it.centroid())) break;
-        sides[0].add(it);
+        goesRight = PackedItem(items_[first]);
+        if (!left(goesRight)) break;
+        sides[0].add(goesRight);
         ++first;
       }
       --last;
       while (true) {
         if (first == last) {
-          sides[1].add(items_[first]);  // read as going right above
+          sides[1].add(goesRight);
           return first;
         }
-        const Item& it = items_[last];
-        if (left(it.centroid())) break;
-        sides[1].add(it);
+        goesLeft = PackedItem(items_[last]);
+        if (left(goesLeft)) break;
+        sides[1].add(goesLeft);
         --last;
       }
-      // items_[first] goes right and items_[last] left: swapped, each is
-      // on its side for good.
-      sides[1].add(items_[first]);
-      sides[0].add(items_[last]);
+      // Swapped, each is on its side for good.
+      sides[1].add(goesRight);
+      sides[0].add(goesLeft);
       std::swap(items_[first], items_[last]);
       ++first;
     }
@@ -330,7 +313,7 @@ class Builder {
     if (!(area > 0.0) || !std::isfinite(area)) return best;
     std::array<std::array<PackedBox, kBins>, 3> binBoxes;
     std::array<std::array<uint32_t, kBins>, 3> binCounts{};
-    const PackedBinning binOf(centroidBox);
+    const Binning binOf(centroidBox);
     std::array<bool, 3> spread{};
     for (int axis = 0; axis < 3; ++axis) spread[axis] = centroidBox.hi[axis] > centroidBox.lo[axis];
     // Every axis is binned, spread or not, so the loop has no branch; the
