@@ -116,22 +116,26 @@ inline void walkRaysInTurn(device::BeamKernel& kernel, std::span<const CeilingRa
   }
 }
 
-// Both walks compiled for the baseline and for x86-64-v3, each with the
-// walk inlined whole (the CPU tracer's entry points do the same,
-// cpu_tracer.cpp), so that the ceiling times the machine code the renderer
-// runs on this processor (fastestCpuCode), not the baseline's.
-__attribute__((flatten)) void walkRaysBaseline(device::BeamKernel& kernel, std::span<const CeilingRay> rays,
-                                               std::span<CeilingHit> hits, size_t begin, size_t end, bool inTurn) {
+inline void walkBlock(device::BeamKernel& kernel, std::span<const CeilingRay> rays, std::span<CeilingHit> hits,
+                      size_t begin, size_t end, bool inTurn) {
   if (inTurn) walkRaysInTurn(kernel, rays, hits, begin, end);
   else walkRays(kernel, rays, hits, begin, end);
 }
+
+// The walks compiled for the baseline and for x86-64-v3, each with the
+// walk inlined whole (the CPU tracer's entry points do the same,
+// cpu_tracer.cpp), so that the ceiling times the machine code the renderer
+// runs on this processor (fastestCpuCode), not the baseline's.
+__attribute__((flatten)) void walkBlockBaseline(device::BeamKernel& kernel, std::span<const CeilingRay> rays,
+                                                std::span<CeilingHit> hits, size_t begin, size_t end, bool inTurn) {
+  walkBlock(kernel, rays, hits, begin, end, inTurn);
+}
 #if defined(__x86_64__)
-__attribute__((flatten, target("arch=x86-64-v3"))) void walkRaysV3(device::BeamKernel& kernel,
-                                                                   std::span<const CeilingRay> rays,
-                                                                   std::span<CeilingHit> hits, size_t begin,
-                                                                   size_t end, bool inTurn) {
-  if (inTurn) walkRaysInTurn(kernel, rays, hits, begin, end);
-  else walkRays(kernel, rays, hits, begin, end);
+__attribute__((flatten, target("arch=x86-64-v3"))) void walkBlockV3(device::BeamKernel& kernel,
+                                                                    std::span<const CeilingRay> rays,
+                                                                    std::span<CeilingHit> hits, size_t begin,
+                                                                    size_t end, bool inTurn) {
+  walkBlock(kernel, rays, hits, begin, end, inTurn);
 }
 #endif
 
@@ -146,9 +150,9 @@ void traceSpectraceBlocks(const RayCeilingGeometry& geometry, std::span<const Ce
     device::BeamKernel kernel(constants, {}, {}, {});
     kernel.setObjects(geometry.primitives, geometry.nodes, {}, {});
 #if defined(__x86_64__)
-    if (code == CpuCode::X86_64_V3) return walkRaysV3(kernel, rays, hits, begin, end, inTurn);
+    if (code == CpuCode::X86_64_V3) return walkBlockV3(kernel, rays, hits, begin, end, inTurn);
 #endif
-    walkRaysBaseline(kernel, rays, hits, begin, end, inTurn);
+    walkBlockBaseline(kernel, rays, hits, begin, end, inTurn);
   });
 }
 
