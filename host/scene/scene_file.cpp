@@ -199,10 +199,6 @@ bool parseOutputSpectral(const jf::Source& c, const Json& v, const std::string& 
   return x->get<bool>();
 }
 
-}  // namespace
-
-namespace {
-
 // A file the scene names, with the digest its loader took of the bytes it
 // read, where it took one (an OBJ mesh's; empty otherwise).
 struct NamedFile {
@@ -245,10 +241,6 @@ std::string namedFilesSha256(const Scene& scene, bool asRead) {
   }
   return sceneSha256Hex(digests);
 }
-
-}  // namespace
-
-namespace {
 
 Scene parseRoot(const Json& root, const fs::path& file, std::string sourceText) {
   const jf::Source c = sourceFor(file);
