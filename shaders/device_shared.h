@@ -268,6 +268,19 @@ struct BvhNode {
   uvec4 child;
   uvec4 count;
 };
+// A BvhNode as the Vulkan trace reads it (64 bytes, half a BvhNode's
+// words: lavapipe loads a storage buffer lane by lane, a pass over the
+// lanes for each word). Each axis has a grid of step 2^e from an integer
+// base; a child's box is the grid cells (base + its byte) * 2^e that hold
+// its float box, so it is never smaller, and unpacking is exact integer and
+// power-of-two arithmetic on any device (shaders/packed_bvh_node.h; packed
+// by host/compile/packed_bvh.h). Slot k: boxes' byte k.
+struct PackedBvhNode {
+  uvec4 grid;     // x, y, z: each axis's base (int32 bits); w: bytes 0-2, each axis's e + 127
+  uvec4 boxesXY;  // minX, maxX, minY, maxY: each child's steps above the base
+  uvec4 boxesZ;   // minZ, maxZ; z, w zero
+  uvec4 entries;  // child[k] << kBvhCountBits | count[k]
+};
 // The binary builder's depth limit (nodes on a root-to-leaf path); a wide
 // tree made from it is no deeper.
 SPECTRACE_CONSTANT uint kBvhMaxDepth = 32u;
@@ -633,6 +646,7 @@ static_assert(offsetof(TraceConstants, cameraParams) == 140);
 static_assert(offsetof(TraceConstants, cameraDataFirst) == 156);
 static_assert(sizeof(Primitive) == 48 && sizeof(Primitive) == 4 * kPrimitiveWords);
 static_assert(sizeof(BvhNode) == 128);
+static_assert(sizeof(PackedBvhNode) == 64);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TraceStats) == 8);
 static_assert(sizeof(BeamRecord) == 16);

@@ -9,6 +9,7 @@
 #include "device_shared.h"
 #include "kernel_lang.h"
 #include "kernel_interface.h"
+#include "packed_bvh_node.h"
 
 layout(local_size_x_id = kSpecWorkgroupSize) in;
 layout(constant_id = kSpecRecordBeams) const uint recordBeams = 0u;
@@ -99,7 +100,7 @@ layout(set = 0, binding = kBindingPrimitives, scalar) readonly buffer PrimitiveB
   Primitive primitives[];
 };
 layout(set = 0, binding = kBindingBvhNodes, scalar) readonly buffer BvhBlock {
-  BvhNode bvhNodes[];
+  PackedBvhNode bvhNodes[];
 };
 layout(set = 0, binding = kBindingMaterials, scalar) readonly buffer MaterialBlock {
   Material materials[];
@@ -118,7 +119,7 @@ layout(set = 0, binding = kBindingPrimitivesUniform, scalar) uniform PrimitiveUn
   Primitive uniformPrimitives[uniformPrimitiveCount];
 };
 layout(set = 0, binding = kBindingBvhNodesUniform, scalar) uniform BvhUniformBlock {
-  BvhNode uniformBvhNodes[uniformBvhNodeCount];
+  PackedBvhNode uniformBvhNodes[uniformBvhNodeCount];
 };
 layout(set = 0, binding = kBindingMaterialsUniform, scalar) uniform MaterialUniformBlock {
   Material uniformMaterials[uniformMaterialCount];
@@ -155,8 +156,8 @@ Primitive readPrimitive(uint i) {
   return primitives[i];
 }
 BvhNode readBvhNode(uint i) {
-  if (uniformObjects != 0u) return uniformBvhNodes[i];
-  return bvhNodes[i];
+  if (uniformObjects != 0u) return unpackBvhNode(uniformBvhNodes[i]);
+  return unpackBvhNode(bvhNodes[i]);
 }
 // GLSL has no prefetch; a GPU hides latency with other invocations.
 void prefetchBvhChild(uint child, uint count) {}

@@ -34,7 +34,7 @@ struct UniformTableLayout {
   bool objectsInUniform = false;
   uint32_t primitives = 1, bvhNodes = 1, materials = 1;
   uint64_t primitiveBytes() const { return uint64_t(primitives) * sizeof(device::Primitive); }
-  uint64_t bvhNodeBytes() const { return uint64_t(bvhNodes) * sizeof(device::BvhNode); }
+  uint64_t bvhNodeBytes() const { return uint64_t(bvhNodes) * sizeof(device::PackedBvhNode); }
   uint64_t materialBytes() const { return uint64_t(materials) * sizeof(device::Material); }
 };
 

@@ -71,9 +71,10 @@ TEST(UniformTables, SmallObjectsGoToUniformBuffersOnTheirOwn) {
   EXPECT_FALSE(mesh.objectsInUniform);
   EXPECT_EQ(mesh.primitives, 1u);
   EXPECT_EQ(mesh.bvhNodes, 1u);
-  // 512 nodes of 128 bytes are exactly 64 KiB; 513 round up to 1024.
-  EXPECT_TRUE(uniformTableLayout(objectsOf(16, 512, 1), 65536, true).objectsInUniform);
-  EXPECT_FALSE(uniformTableLayout(objectsOf(16, 513, 1), 65536, true).objectsInUniform);
+  // The trace reads packed nodes (64 bytes): 1024 are exactly 64 KiB;
+  // 1025 round up to 2048.
+  EXPECT_TRUE(uniformTableLayout(objectsOf(16, 1024, 1), 65536, true).objectsInUniform);
+  EXPECT_FALSE(uniformTableLayout(objectsOf(16, 1025, 1), 65536, true).objectsInUniform);
   // Nothing to read without objects, and nothing in the general pipeline.
   EXPECT_FALSE(uniformTableLayout(objectsOf(0, 0, 0), 65536, true).objectsInUniform);
   EXPECT_FALSE(uniformTableLayout(objectsOf(8, 3, 1), 65536, false).objectsInUniform);

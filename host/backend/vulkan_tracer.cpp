@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "compile/packed_bvh.h"
 #include "embedded_shaders.h"
 #include "json/scene_error.h"
 #include "scene/scene_limits.h"
@@ -71,7 +72,7 @@ std::vector<SceneTableBuffer> sceneTableBuffers(TracerBufferPool& pool, const vk
                                      kBindingCmfTableUniform, uniform.cmfBytes()));
   tables.push_back(paddedTableBuffer(pool, context, kBindingPrimitives, "primitives", s.primitives, uniform.primitives,
                                      kBindingPrimitivesUniform, uniform.primitiveBytes()));
-  tables.push_back(paddedTableBuffer(pool, context, kBindingBvhNodes, "bvh nodes", s.bvhNodes, uniform.bvhNodes,
+  tables.push_back(paddedTableBuffer(pool, context, kBindingBvhNodes, "bvh nodes", packBvhNodes(s.bvhNodes), uniform.bvhNodes,
                                      kBindingBvhNodesUniform, uniform.bvhNodeBytes()));
   tables.push_back(paddedTableBuffer(pool, context, kBindingMaterials, "materials", s.materials, uniform.materials,
                                      kBindingMaterialsUniform, uniform.materialBytes()));
@@ -240,7 +241,7 @@ void checkSceneFitsDevice(const CompiledScene& plan, uint64_t maxStorageBufferRa
         maxStorageBufferRange, deviceName));
   }
   const uint64_t objectBytes = std::max({plan.device.primitives.size() * sizeof(device::Primitive),
-                                          plan.device.bvhNodes.size() * sizeof(device::BvhNode),
+                                          plan.device.bvhNodes.size() * sizeof(device::PackedBvhNode),
                                           plan.device.materials.size() * sizeof(device::Material),
                                           plan.device.data.words().size() * sizeof(uint32_t)});
   if (objectBytes > maxStorageBufferRange)
