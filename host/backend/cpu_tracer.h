@@ -32,10 +32,11 @@ struct HugePageAllocator {
   HugePageAllocator(const HugePageAllocator<U>&) {}
   T* allocate(size_t n);
   void deallocate(T* p, size_t n);
-  // Value-initialisation of an arithmetic T: the memory is already zero.
+  // Value-initialisation of a trivial T (a number, a record of numbers):
+  // the memory is already zero.
   template <typename U>
   void construct(U* p) noexcept {
-    static_assert(std::is_arithmetic_v<U>);
+    static_assert(std::is_trivial_v<U>);
     ::new (static_cast<void*>(p)) U;
   }
   template <typename U, typename... Args>
