@@ -24,8 +24,14 @@ namespace spectrace {
 struct RayCeilingGeometry {
   std::vector<device::Primitive> primitives;
   std::vector<device::BvhNode> nodes;
+  // As the CPU reference holds them (full nodes).
   double bytesPerPrimitive() const {
     return double(nodes.size() * sizeof(device::BvhNode) + primitives.size() * sizeof(device::Primitive)) /
+           double(primitives.size());
+  }
+  // As the Vulkan trace holds them (packed nodes, compile/packed_bvh.h).
+  double vulkanBytesPerPrimitive() const {
+    return double(nodes.size() * sizeof(device::PackedBvhNode) + primitives.size() * sizeof(device::Primitive)) /
            double(primitives.size());
   }
 };
@@ -97,6 +103,7 @@ struct RayCeilingRow {
   unsigned threads = 0;
   const char* cpuCode = "";  // the machine code of spectrace's walks (cpuCodeName)
   double bytesPerTriangle = 0.0, embreeBytesPerTriangle = 0.0;
+  double vulkanBytesPerTriangle = 0.0;  // the same tree as the Vulkan trace holds it
   // Least of the rounds, in seconds, on one thread and on `threads`.
   double spectrace1 = 0.0, spectraceN = 0.0, embree1 = 0.0, embreeN = 0.0;
   // spectrace with kCeilingWalksInFlight walks in turn on each thread (as

@@ -22,6 +22,8 @@ RayCeilingRow ceilingRow(uint64_t triangles, double spectraceSeconds, double emb
   r.spectraceN = spectraceSeconds / 2.0;
   r.embree1 = embreeSeconds;
   r.embreeN = embreeSeconds / 2.0;
+  r.bytesPerTriangle = 59.5;
+  r.vulkanBytesPerTriangle = 53.75;
   return r;
 }
 
@@ -52,6 +54,12 @@ TEST(BenchReport, RayCeilingDetailsTheLargestMeshAndTabulatesTheSizes) {
   EXPECT_EQ(md.find("mesh of 960 triangles"), std::string::npos);
   EXPECT_NE(md.find("| 960 | 4.000 | 8.000 | 0.500 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 998000 | 0.800 | 2.000 | 0.400 |"), std::string::npos) << md;
+}
+
+TEST(BenchReport, RayCeilingGivesTheTreesBytesOnBothDevices) {
+  const std::string md = reportWith({ceilingRow(998000, 1.25, 0.5)}, "ceiling_bytes");
+  EXPECT_NE(md.find("| spectrace | 1 | 0.800 | 59.5 | |"), std::string::npos) << md;
+  EXPECT_NE(md.find("64-byte packed nodes, 53.8 bytes a triangle"), std::string::npos) << md;
 }
 
 TEST(BenchReport, RayCeilingOfOneMeshHasNoTableBySize) {

@@ -276,6 +276,8 @@ RayCeilingRow runRayCeilingSection(const BenchCommand& command, uint64_t triangl
   fmt::print("(the last two: {} walks in turn on each thread, as the CPU reference walks a tree larger than the last-level "
              "cache; {} rays hit differently from one walk at a time)\n",
              kCeilingWalksInFlight, r.interleavedDifferences);
+  fmt::print("(bytes/triangle: the CPU reference's full nodes; the Vulkan trace's packed nodes take {:.1f})\n",
+             r.vulkanBytesPerTriangle);
   if (!r.embree) {
     fmt::print("Embree: unavailable (built without it: install libembree-dev, configure with -DSPECTRACE_EMBREE=ON)\n");
     return r;
