@@ -110,7 +110,7 @@ layout(set = 0, binding = kBindingSceneData, scalar) readonly buffer SceneDataBl
 };
 // The objects again as uniform buffers, read instead when uniformObjects is
 // 1: lavapipe loads a storage buffer lane by lane, a pass over the lanes
-// for each word of a 32-word BVH node, and gathers a uniform buffer's.
+// for each word of a 16-word packed BVH node, and gathers a uniform buffer's.
 layout(constant_id = kSpecUniformObjects) const uint uniformObjects = 0u;
 layout(constant_id = kSpecUniformPrimitives) const uint uniformPrimitiveCount = 1u;
 layout(constant_id = kSpecUniformBvhNodes) const uint uniformBvhNodeCount = 1u;

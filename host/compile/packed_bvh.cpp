@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
+#include "compile/wide_bvh.h"
 #include "kernel_lang.h"
 
 namespace spectrace {
@@ -34,7 +35,8 @@ struct AxisGrid {
 // base of magnitude at most kMaxBase.
 AxisGrid axisGrid(float lo, float hi, size_t node) {
   if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
-    throw std::invalid_argument(fmt::format("packBvhNodes: node {} has a box [{}, {}] that is not finite", node, lo, hi));
+    throw std::invalid_argument(
+        fmt::format("packBvhNodes: node {} has children spanning [{}, {}], not a finite interval", node, lo, hi));
   const double span = double(hi) - double(lo);
   int e = kMinExponent;
   if (span > 0) e = std::max(e, int(std::floor(std::log2(span / 255.0))));
@@ -51,7 +53,7 @@ AxisGrid axisGrid(float lo, float hi, size_t node) {
 uint32_t gridBytes(const glm::vec4& values, const AxisGrid& grid, bool up, const device::BvhNode& node) {
   uint32_t bytes = 0;
   for (int k = 0; k < 4; ++k) {
-    if (node.count[k] == 0 && node.child[k] == 0) continue;  // an empty slot
+    if (isEmptySlot(node, k)) continue;
     const double scaled = std::ldexp(double(values[k]), -grid.exponent);
     const double steps = (up ? std::ceil(scaled) : std::floor(scaled)) - grid.base;
     bytes |= uint32_t(steps) << (8 * k);
@@ -74,7 +76,7 @@ std::vector<device::PackedBvhNode> packBvhNodes(std::span<const device::BvhNode>
       float lo = 0.0f, hi = 0.0f;
       bool any = false;
       for (int k = 0; k < 4; ++k) {
-        if (node.count[k] == 0 && node.child[k] == 0) continue;
+        if (isEmptySlot(node, k)) continue;
         lo = any ? std::min(lo, (*mins[axis])[k]) : (*mins[axis])[k];
         hi = any ? std::max(hi, (*maxs[axis])[k]) : (*maxs[axis])[k];
         any = true;
