@@ -62,7 +62,7 @@ RayCeilingGeometry meshCeilingGeometry(uint64_t triangles) {
 
 std::vector<CeilingRay> incoherentRays(const RayCeilingGeometry& geometry, uint64_t count, uint64_t seed) {
   glm::vec3 rootLo, rootHi;
-  rootBounds(geometry.nodes.at(0), rootLo, rootHi);
+  nodeBounds(geometry.nodes.at(0), rootLo, rootHi);
   const glm::dvec3 lo(rootLo), hi(rootHi);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});

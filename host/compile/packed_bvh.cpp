@@ -50,12 +50,17 @@ AxisGrid axisGrid(float lo, float hi, size_t node) {
 }
 
 // Child coordinates on the grid: steps above the base, rounded outwards.
-uint32_t gridBytes(const glm::vec4& values, const AxisGrid& grid, bool up, const device::BvhNode& node) {
+uint32_t gridBytes(const glm::vec4& values, const AxisGrid& grid, bool up, const device::BvhNode& node, size_t index) {
   uint32_t bytes = 0;
   for (int k = 0; k < 4; ++k) {
     if (isEmptySlot(node, k)) continue;
     const double scaled = std::ldexp(double(values[k]), -grid.exponent);
     const double steps = (up ? std::ceil(scaled) : std::floor(scaled)) - grid.base;
+    // Off the grid: a plane that is NaN (nodeBounds passes over it) or
+    // outside the node's bounds.
+    if (!(steps >= 0.0 && steps <= 255.0))
+      throw std::invalid_argument(fmt::format("packBvhNodes: node {} slot {} has a plane at {}, off its grid", index, k,
+                                              values[k]));
     bytes |= uint32_t(steps) << (8 * k);
   }
   return bytes;
@@ -70,22 +75,17 @@ std::vector<device::PackedBvhNode> packBvhNodes(std::span<const device::BvhNode>
     device::PackedBvhNode& out = packed[i];
     const glm::vec4* mins[3] = {&node.minX, &node.minY, &node.minZ};
     const glm::vec4* maxs[3] = {&node.maxX, &node.maxY, &node.maxZ};
+    glm::vec3 lo, hi;
+    nodeBounds(node, lo, hi);
+    if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);  // no children (a scene without objects)
     uint32_t exponents = 0;
     uint32_t boxes[6] = {};
     for (int axis = 0; axis < 3; ++axis) {
-      float lo = 0.0f, hi = 0.0f;
-      bool any = false;
-      for (int k = 0; k < 4; ++k) {
-        if (isEmptySlot(node, k)) continue;
-        lo = any ? std::min(lo, (*mins[axis])[k]) : (*mins[axis])[k];
-        hi = any ? std::max(hi, (*maxs[axis])[k]) : (*maxs[axis])[k];
-        any = true;
-      }
-      const AxisGrid grid = axisGrid(lo, hi, i);
+      const AxisGrid grid = axisGrid(lo[axis], hi[axis], i);
       out.grid[axis] = uint32_t(int32_t(grid.base));
       exponents |= uint32_t(grid.exponent + 127) << (8 * axis);
-      boxes[2 * axis] = gridBytes(*mins[axis], grid, false, node);
-      boxes[2 * axis + 1] = gridBytes(*maxs[axis], grid, true, node);
+      boxes[2 * axis] = gridBytes(*mins[axis], grid, false, node, i);
+      boxes[2 * axis + 1] = gridBytes(*maxs[axis], grid, true, node, i);
     }
     out.grid.w = exponents;
     out.boxesXY = glm::uvec4(boxes[0], boxes[1], boxes[2], boxes[3]);

@@ -125,13 +125,13 @@ WideBvh flatBvh(const glm::vec3& lo, const glm::vec3& hi, uint32_t count) {
   return out;
 }
 
-void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi) {
+void nodeBounds(const device::BvhNode& node, glm::vec3& lo, glm::vec3& hi) {
   lo = glm::vec3(std::numeric_limits<float>::infinity());
   hi = -lo;
   for (int k = 0; k < int(kWidth); ++k) {
-    if (isEmptySlot(root, k)) continue;
-    lo = glm::min(lo, glm::vec3(root.minX[k], root.minY[k], root.minZ[k]));
-    hi = glm::max(hi, glm::vec3(root.maxX[k], root.maxY[k], root.maxZ[k]));
+    if (isEmptySlot(node, k)) continue;
+    lo = glm::min(lo, glm::vec3(node.minX[k], node.minY[k], node.minZ[k]));
+    hi = glm::max(hi, glm::vec3(node.maxX[k], node.maxY[k], node.maxZ[k]));
   }
 }
 

@@ -46,7 +46,8 @@ inline bool isEmptySlot(const device::BvhNode& node, int k) { return node.count[
 // leaf's code.
 uint32_t rootLeafCount(const std::vector<device::BvhNode>& nodes);
 
-// The union of a root's child boxes: the tree's bounds.
-void rootBounds(const device::BvhNode& root, glm::vec3& lo, glm::vec3& hi);
+// The union of a node's child boxes (the root's: the tree's bounds); lo
+// above hi for a node without children. NaN planes are passed over.
+void nodeBounds(const device::BvhNode& node, glm::vec3& lo, glm::vec3& hi);
 
 }  // namespace spectrace

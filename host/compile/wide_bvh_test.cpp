@@ -177,7 +177,7 @@ TEST(WideBvh, AWalkFromTheRootsOnlyLeafFindsTheSameHits) {
       std::uniform_real_distribution<float> around(-1.0f, 2.0f);
       int hits = 0, missedBox = 0;
       vec3 lo, hi;
-      rootBounds(t.wide.nodes[0], lo, hi);
+      nodeBounds(t.wide.nodes[0], lo, hi);
       for (int r = 0; r < 4000; ++r) {
         const vec3 origin(around(rng), around(rng), r % 2 == 0 ? -0.5f : around(rng));
         // Half aimed at a triangle's corner or edge, half anywhere.
