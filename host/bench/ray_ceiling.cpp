@@ -289,7 +289,7 @@ RayCeilingRow runRayCeiling(uint64_t triangles, uint64_t rayCount, unsigned thre
   const RayCeilingGeometry geometry = meshCeilingGeometry(triangles);
   row.triangles = geometry.primitives.size();
   row.bytesPerTriangle = geometry.bytesPerPrimitive();
-  row.vulkanBytesPerTriangle = geometry.vulkanBytesPerPrimitive();
+  row.vulkanBytesPerTriangle = geometry.bytesPerPrimitive(sizeof(device::PackedBvhNode));
   const std::vector<CeilingRay> rays = incoherentRays(geometry, rayCount, 1);
   row.rays = rays.size();
   std::vector<CeilingHit> ours(rays.size()), theirs(rays.size());

@@ -24,14 +24,10 @@ namespace spectrace {
 struct RayCeilingGeometry {
   std::vector<device::Primitive> primitives;
   std::vector<device::BvhNode> nodes;
-  // As the CPU reference holds them (full nodes).
-  double bytesPerPrimitive() const {
-    return double(nodes.size() * sizeof(device::BvhNode) + primitives.size() * sizeof(device::Primitive)) /
-           double(primitives.size());
-  }
-  // As the Vulkan trace holds them (packed nodes, compile/packed_bvh.h).
-  double vulkanBytesPerPrimitive() const {
-    return double(nodes.size() * sizeof(device::PackedBvhNode) + primitives.size() * sizeof(device::Primitive)) /
+  // With nodes of `nodeBytes`: the CPU reference's full nodes, or the
+  // Vulkan trace's packed ones (compile/packed_bvh.h).
+  double bytesPerPrimitive(size_t nodeBytes = sizeof(device::BvhNode)) const {
+    return double(nodes.size() * nodeBytes + primitives.size() * sizeof(device::Primitive)) /
            double(primitives.size());
   }
 };
