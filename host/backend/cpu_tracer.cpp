@@ -255,6 +255,14 @@ size_t lastLevelCacheBytes() {
   return bytes;
 }
 
+// run(0), ..., run(count - 1) at once, run(0) on this thread.
+template <typename Run>
+void runOnThreads(size_t count, Run run) {
+  std::vector<std::jthread> pool;
+  for (size_t i = 1; i < count; ++i) pool.emplace_back(run, i);
+  run(size_t(0));
+}
+
 // `from` into `to`, in one part per thread: the first touch of a huge page
 // is the kernel's to zero (and, where memory is fragmented, to compact
 // for), tens of milliseconds for a large mesh's tree on one core.
@@ -266,9 +274,7 @@ void copyOnThreads(const std::vector<T>& from, std::vector<T, HugePageAllocator<
     const size_t begin = from.size() * part / parts, end = from.size() * (part + 1) / parts;
     std::copy(from.begin() + ptrdiff_t(begin), from.begin() + ptrdiff_t(end), to.begin() + ptrdiff_t(begin));
   };
-  std::vector<std::jthread> pool;
-  for (size_t part = 1; part < parts; ++part) pool.emplace_back(copyPart, part);
-  copyPart(0);
+  runOnThreads(parts, copyPart);
 }
 
 bool interleaves(WalkInterleaving interleaving, const DeviceScene& scene, uint32_t profileStage) {
@@ -336,10 +342,7 @@ uint64_t CpuTracer::trace(uint64_t firstBeam, uint64_t beamCount, const std::ato
     queues.groups[1].flush();
     counted.fetch_add(countedHere, std::memory_order_relaxed);
   };
-  std::vector<std::jthread> pool;
-  for (unsigned t = 1; t < threads_; ++t) pool.emplace_back(worker);
-  worker();
-  pool.clear();  // joins
+  runOnThreads(threads_, [&](size_t) { worker(); });
   countedBeams_ += counted.load();
   return std::min(beamCount, claims.stoppedAtBlock.load() * blockBeams);
 }
