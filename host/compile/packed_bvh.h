@@ -18,7 +18,7 @@ namespace spectrace {
 // children's union spans at most 255 steps and the base stays below 2^24 -
 // 256 in magnitude; each child box rounded outwards onto it. The children
 // and counts are unchanged. Throws std::invalid_argument for a node whose
-// boxes are not finite or span beyond 2^126.
+// boxes are not finite, are inverted, or span beyond 2^126.
 std::vector<device::PackedBvhNode> packBvhNodes(std::span<const device::BvhNode> nodes);
 
 // The box the shader reads for `packed` (shaders/packed_bvh_node.h, the
