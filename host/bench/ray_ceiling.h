@@ -58,7 +58,7 @@ void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingR
 // The same hits, each thread stepping kCeilingWalksInFlight walks in turn
 // (BeamKernel::stepWalk), as the CPU reference's threads do with their
 // beams' walks on a large tree (backend/walk_interleaver.h).
-constexpr size_t kCeilingWalksInFlight = 8;
+constexpr size_t kCeilingWalksInFlight = 16;
 void traceSpectraceInterleaved(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
                                std::span<CeilingHit> hits, unsigned threads);
 
