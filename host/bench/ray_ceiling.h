@@ -15,6 +15,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "backend/cpu_tracer.h"
 #include "device_shared.h"
 
 namespace spectrace {
@@ -57,8 +58,8 @@ void traceSpectrace(const RayCeilingGeometry& geometry, std::span<const CeilingR
                     unsigned threads);
 // The same hits, each thread stepping kCeilingWalksInFlight walks in turn
 // (BeamKernel::stepWalk), as the CPU reference's threads do with their
-// beams' walks on a large tree (backend/walk_interleaver.h).
-constexpr size_t kCeilingWalksInFlight = 16;
+// beams' walks on a large tree (backend/walk_interleaver.h), as many.
+constexpr size_t kCeilingWalksInFlight = CpuTracer::kBeamsInFlight;
 void traceSpectraceInterleaved(const RayCeilingGeometry& geometry, std::span<const CeilingRay> rays,
                                std::span<CeilingHit> hits, unsigned threads);
 
